@@ -1,0 +1,80 @@
+// The constant part of a rigid body: mass properties computed once from its
+// point particles (seed: "pre-computation"). Immutable after construction.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+namespace rigid_body_sim {
+
+// A point mass in the body's reference coordinates (as written in the scene).
+struct Particle {
+  double mass_kg = 0.0;
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+};
+
+// M, x̄_CM, r̄_i and Ī = Σ −m_i r̃̄_i r̃̄_i of a set of particles, with the
+// principal moments and axes and the pseudo-inverse of Ī. The body frame has
+// its origin at the COM and the axes of the reference coordinates.
+//
+// Degenerate bodies are legal: a single particle (Ī = 0) or collinear
+// particles (one zero principal moment). A principal moment below
+// kNullMomentRatio · λ_max is treated as zero, and its inverse as zero, which
+// is exact because particle forces make no torque about that axis.
+class BodyModel {
+ public:
+  static constexpr double kNullMomentRatio = 1e-12;
+
+  // Throws std::invalid_argument naming the body, the particle index and the
+  // problem: no particles, a mass <= 0 or not finite, a position not finite.
+  BodyModel(std::string name, std::vector<Particle> particles);
+
+  const std::string& name() const { return name_; }
+  double mass() const { return mass_kg_; }
+  double inverse_mass() const { return 1.0 / mass_kg_; }
+  std::size_t particle_count() const { return masses_kg_.size(); }
+  const std::vector<double>& particle_masses() const { return masses_kg_; }
+  // x̄_CM, reference coordinates [m].
+  const Eigen::Vector3d& reference_com() const { return reference_com_m_; }
+  // r̄_i = x̄_i − x̄_CM, body axes [m].
+  const std::vector<Eigen::Vector3d>& particle_offsets() const { return offsets_m_; }
+
+  // Ī about the COM, body axes [kg m²], and its pseudo-inverse.
+  const Eigen::Matrix3d& inertia() const { return inertia_; }
+  const Eigen::Matrix3d& inverse_inertia() const { return inverse_inertia_; }
+
+  // Principal moments λ_1 <= λ_2 <= λ_3 (null ones set to exactly 0), their
+  // inverses (0 for a null moment), and the rotation from the principal frame
+  // to body axes (a proper rotation: R_BP = principal_axes().toRotationMatrix()).
+  const Eigen::Vector3d& principal_moments() const { return principal_moments_; }
+  const Eigen::Vector3d& inverse_principal_moments() const { return inverse_principal_moments_; }
+  const Eigen::Quaterniond& principal_axes() const { return principal_axes_; }
+  // Orthogonal projector onto the range of Ī, body axes (identity when Ī is
+  // invertible, zero for a single particle).
+  const Eigen::Matrix3d& range_projector() const { return range_projector_; }
+
+  int rank() const { return rank_; }
+  bool is_full_rank() const { return rank_ == 3; }
+  // All three principal moments equal (sphere, cube): ω ∥ L, no gyroscopic term.
+  bool is_isotropic() const { return isotropic_; }
+
+ private:
+  std::string name_;
+  double mass_kg_ = 0.0;
+  std::vector<double> masses_kg_;
+  Eigen::Vector3d reference_com_m_;
+  std::vector<Eigen::Vector3d> offsets_m_;
+  Eigen::Matrix3d inertia_;
+  Eigen::Matrix3d inverse_inertia_;
+  Eigen::Vector3d principal_moments_;
+  Eigen::Vector3d inverse_principal_moments_;
+  Eigen::Quaterniond principal_axes_;
+  Eigen::Matrix3d range_projector_;
+  int rank_ = 0;
+  bool isotropic_ = false;
+};
+
+}  // namespace rigid_body_sim

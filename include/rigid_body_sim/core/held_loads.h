@@ -1,0 +1,47 @@
+// The wrenches held on one body during a step, reduced once so that the
+// wrench at any orientation A costs one 3x3 product:
+//   F = F_W + A F_B
+//   τ = τ_W + A τ_B + Σ (A r̄_i) × f_i,   Σ (A r̄_i) × f_i = vee(C Aᵀ − A Cᵀ), C = Σ f_i r̄_iᵀ
+// with f_i world-axes particle forces, F_B and τ_B the body-axes forces and
+// torques (τ_B includes Σ r̄_i × g_i of body-axes particle forces g_i).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "rigid_body_sim/core/load.h"
+
+namespace rigid_body_sim {
+
+class HeldLoads final : public Load {
+ public:
+  void Clear();
+  // A force at the particle with offset r̄ (body axes), given in world axes.
+  void AddWorldForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset);
+  // A force at the particle with offset r̄, given in body axes.
+  void AddBodyForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset);
+  void AddWorldCouple(const Eigen::Vector3d& couple);
+  void AddBodyCouple(const Eigen::Vector3d& couple);
+  // A force at the COM, world axes (gravity: M g).
+  void AddCentralForce(const Eigen::Vector3d& force);
+  // Restricts every torque to the range of the inertia tensor (projector P̄,
+  // body axes): for a degenerate body the couple along a null axis is dropped.
+  void SetTorqueProjector(const Eigen::Matrix3d& range_projector);
+
+  // Norm of the couple dropped by the projector at orientation `rotation` [N m].
+  double DroppedTorque(const Eigen::Matrix3d& rotation) const;
+
+  Wrench At(double time_in_step_s, const Eigen::Matrix3d& rotation) const override;
+  bool has_torque() const override { return has_torque_; }
+
+ private:
+  Eigen::Vector3d force_world_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d force_body_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque_world_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque_body_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d force_moment_ = Eigen::Matrix3d::Zero();  // C = Σ f_i r̄_iᵀ
+  Eigen::Matrix3d torque_projector_ = Eigen::Matrix3d::Identity();
+  bool has_torque_ = false;
+  bool projects_torque_ = false;
+};
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,19 @@
+// `exact_free`: half kick, the exact torque-free flow over dt (Jacobi
+// elliptic functions for Π(t), the third-kind elliptic integral for the
+// precession about L), drift, half kick. Exact for a torque-free body at any
+// dt; second order (Strang) when torques act.
+#pragma once
+
+#include "rigid_body_sim/core/integrator.h"
+
+namespace rigid_body_sim {
+
+class ExactFreeIntegrator final : public Integrator {
+ public:
+  const char* name() const override { return "exact_free"; }
+  int order() const override { return 2; }
+  void Step(const BodyModel& model, const Load* load, double dt_s,
+            BodyState* state) const override;
+};
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,41 @@
+// Quantities derived from a body's model and state on demand (seed: ω = I⁻¹L,
+// x_i = x_CM + A r̄_i, v_i = v + ω × r_i).
+#pragma once
+
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_state.h"
+
+namespace rigid_body_sim {
+
+// v = p / M, world [m/s].
+Eigen::Vector3d LinearVelocity(const BodyModel& model, const BodyState& state);
+
+// ω = A Ī⁺ Aᵀ L, world [rad/s].
+Eigen::Vector3d AngularVelocity(const BodyModel& model, const BodyState& state);
+
+// I = A Ī Aᵀ, world axes [kg m²].
+Eigen::Matrix3d WorldInertia(const BodyModel& model, const BodyState& state);
+
+// p·p / 2M + L·ω / 2 [J].
+double KineticEnergy(const BodyModel& model, const BodyState& state);
+
+// x_i for every particle, world [m]; `positions` is resized.
+void ParticlePositions(const BodyModel& model, const BodyState& state,
+                       std::vector<Eigen::Vector3d>* positions);
+
+// v_i = v + ω × (x_i − x_CM), world [m/s]; `velocities` is resized.
+void ParticleVelocities(const BodyModel& model, const BodyState& state,
+                        std::vector<Eigen::Vector3d>* velocities);
+
+// A body state from a pose and a twist (world axes, COM), with p = M v and
+// L = I ω projected onto the range of I.
+BodyState StateFromTwist(const BodyModel& model, const Eigen::Vector3d& position,
+                         const Eigen::Quaterniond& orientation,
+                         const Eigen::Vector3d& linear_velocity,
+                         const Eigen::Vector3d& angular_velocity);
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,78 @@
+// Bodies, their held wrenches, gravity and simulation time: the only place
+// that knows how a step is put together (SPEC "Time and wrench semantics").
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/held_loads.h"
+#include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/wrench_table.h"
+
+namespace rigid_body_sim {
+
+struct WorldOptions {
+  std::string integrator = kDefaultIntegrator;
+  double dt_s = 1e-3;
+  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // [m/s²], at every COM
+  double wrench_timeout_s = 0.0;                      // 0: held until replaced
+  double start_time_s = 0.0;                          // t_0
+};
+
+class World {
+ public:
+  // Throws std::invalid_argument on an unknown integrator, dt <= 0, duplicate
+  // or empty body names, or a states/models size mismatch.
+  World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
+        const WorldOptions& options);
+
+  std::size_t size() const { return models_.size(); }
+  const BodyModel& model(std::size_t body) const { return models_[body]; }
+  const BodyState& state(std::size_t body) const { return states_[body]; }
+  const std::vector<BodyModel>& models() const { return models_; }
+  const std::vector<BodyState>& states() const { return states_; }
+  std::optional<std::size_t> FindBody(const std::string& name) const;
+  const Integrator& integrator() const { return *integrator_; }
+  const WorldOptions& options() const { return options_; }
+
+  // t_n = t_0 + n·dt, from the step count so it never drifts.
+  double time() const { return options_.start_time_s + static_cast<double>(steps_) * options_.dt_s; }
+  std::uint64_t step_count() const { return steps_; }
+  // Sets t_0 (the node sets it to the ROS time when stepping starts).
+  void SetStartTime(double start_time_s) { options_.start_time_s = start_time_s; }
+
+  // Advances every body from t_n to t_(n+1) with the wrenches active at t_n.
+  void Step();
+
+  // Every body back to its initial state, wrenches cleared; time goes on.
+  void Reset();
+  void SetBodyState(std::size_t body, const BodyState& state);
+
+  WrenchTable& wrenches() { return wrenches_; }
+  const WrenchTable& wrenches() const { return wrenches_; }
+
+  // Steps in which a body's pure couple had a component along a null
+  // principal axis, which was dropped.
+  std::uint64_t dropped_couple_count() const { return dropped_couples_; }
+
+ private:
+  std::vector<BodyModel> models_;
+  std::vector<BodyState> initial_states_;
+  std::vector<BodyState> states_;
+  WorldOptions options_;
+  std::unique_ptr<Integrator> integrator_;
+  WrenchTable wrenches_;
+  std::vector<HeldLoads> loads_;
+  std::vector<char> loaded_;
+  std::uint64_t steps_ = 0;
+  std::uint64_t dropped_couples_ = 0;
+};
+
+}  // namespace rigid_body_sim

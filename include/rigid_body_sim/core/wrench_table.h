@@ -1,0 +1,58 @@
+// The particle wrenches held by the world (SPEC "Time and wrench semantics"):
+// one per (body, particle), replaced by a later one for the same particle,
+// active from its start time and, with a timeout, until start + timeout.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <unordered_map>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/held_loads.h"
+
+namespace rigid_body_sim {
+
+enum class WrenchAxes { kWorld, kBody };
+
+struct ParticleWrench {
+  std::size_t body = 0;
+  std::size_t particle = 0;
+  WrenchAxes axes = WrenchAxes::kWorld;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // [N], at the particle
+  Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // [N m], pure couple on the body
+  double start_s = 0.0;                              // active from this simulation time
+};
+
+enum class WrenchRejection { kAccepted, kNonFinite, kUnknownBody, kParticleOutOfRange };
+const char* ToString(WrenchRejection rejection);
+
+class WrenchTable {
+ public:
+  // particle_counts[b] is the number of particles of body b.
+  explicit WrenchTable(std::vector<std::size_t> particle_counts);
+
+  // Holds `wrench`, replacing the one held for the same particle; a rejected
+  // wrench changes nothing.
+  WrenchRejection Hold(const ParticleWrench& wrench);
+  void Clear();
+  std::size_t size() const { return entries_.size(); }
+
+  // Sums the wrenches active at t_s (start <= t_s and, for timeout_s > 0,
+  // t_s < start + timeout_s) into loads[b] for every body b that has one and
+  // sets loaded[b]; others are left cleared. Expired wrenches are dropped.
+  void Reduce(double t_s, double timeout_s, const std::vector<BodyModel>& models,
+              std::vector<HeldLoads>* loads, std::vector<char>* loaded);
+
+ private:
+  static std::uint64_t Key(std::size_t body, std::size_t particle) {
+    return (static_cast<std::uint64_t>(body) << 32) | particle;
+  }
+  std::vector<std::size_t> particle_counts_;
+  std::vector<ParticleWrench> entries_;                   // in order of arrival
+  std::unordered_map<std::uint64_t, std::size_t> index_;  // key → position in entries_
+};
+
+}  // namespace rigid_body_sim

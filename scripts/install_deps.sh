@@ -1,0 +1,26 @@
+#!/bin/bash
+# Installs Debian bookworm's ROS 1 packages and the tools rigid_body_sim needs.
+# Skips apt entirely when everything is already there.
+set -euo pipefail
+packages=(
+  build-essential cmake catkin python3-catkin-pkg python3-rospkg
+  ros-core-dev libroscpp-dev librostest-dev python3-rostest
+  ros-message-generation ros-message-runtime
+  libtf2-ros-dev libtf2-eigen-dev libtf2-msgs-dev libgeometry-msgs-dev
+  libstd-srvs-dev libvisualization-msgs-dev libdiagnostic-updater-dev
+  libdiagnostic-msgs-dev libros-rosgraph-msgs-dev
+  python3-geometry-msgs python3-std-srvs python3-diagnostic-msgs
+  python3-tf2-msgs python3-visualization-msgs python3-rosgraph-msgs
+  libeigen3-dev libboost-dev libgtest-dev googletest libbenchmark-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  echo "install_deps: installing ${missing[*]}"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
