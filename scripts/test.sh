@@ -1,0 +1,13 @@
+#!/bin/bash
+# The one test command: installs what is missing, builds, runs every test
+# (gtest for the core, rostest for the node) and exits non-zero on any failure.
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ws="${RBS_WS:-$repo/build_ws}"
+bash "$repo/scripts/build.sh" -j2
+export PATH="/usr/bin:$PATH"
+cd "$ws"
+set +u; source devel/setup.bash; set -u
+rm -rf build/test_results
+catkin_make run_tests -j1
+catkin_test_results build/test_results
