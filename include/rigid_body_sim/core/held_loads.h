@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 #include "rigid_body_sim/core/load.h"
 

@@ -69,8 +69,10 @@ class World {
   WorldOptions options_;
   std::unique_ptr<Integrator> integrator_;
   WrenchTable wrenches_;
-  std::vector<HeldLoads> loads_;
+  std::vector<HeldLoads> loads_;          // this step's wrenches, bodies with loaded_ set
+  std::vector<HeldLoads> gravity_loads_;  // M g alone, for bodies without wrenches
   std::vector<char> loaded_;
+  bool has_gravity_ = false;
   std::uint64_t steps_ = 0;
   std::uint64_t dropped_couples_ = 0;
 };

@@ -43,8 +43,11 @@ class WrenchTable {
   // Sums the wrenches active at t_s (start <= t_s and, for timeout_s > 0,
   // t_s < start + timeout_s) into loads[b] for every body b that has one and
   // sets loaded[b]; others are left cleared. Expired wrenches are dropped.
-  void Reduce(double t_s, double timeout_s, const std::vector<BodyModel>& models,
-              std::vector<HeldLoads>* loads, std::vector<char>* loaded);
+  // Times closer than tolerance_s count as equal, so that a stamp computed
+  // as t_0 + n·dt elsewhere lands on step n despite round-off.
+  void Reduce(double t_s, double timeout_s, double tolerance_s,
+              const std::vector<BodyModel>& models, std::vector<HeldLoads>* loads,
+              std::vector<char>* loaded);
 
  private:
   static std::uint64_t Key(std::size_t body, std::size_t particle) {

@@ -1,0 +1,82 @@
+#include "rigid_body_sim/core/body_model.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <Eigen/Eigenvalues>
+
+namespace rigid_body_sim {
+namespace {
+
+// r̃ r̃ for the cross-product matrix r̃ of r: r rᵀ − (r·r) 1.
+Eigen::Matrix3d CrossSquared(const Eigen::Vector3d& r) {
+  return r * r.transpose() - r.squaredNorm() * Eigen::Matrix3d::Identity();
+}
+
+[[noreturn]] void Reject(const std::string& body, std::size_t particle, const std::string& what) {
+  std::ostringstream message;
+  message << "body '" << body << "': particles[" << particle << "]." << what;
+  throw std::invalid_argument(message.str());
+}
+
+}  // namespace
+
+BodyModel::BodyModel(std::string name, std::vector<Particle> particles) : name_(std::move(name)) {
+  if (particles.empty()) {
+    throw std::invalid_argument("body '" + name_ + "': particles must not be empty");
+  }
+  for (std::size_t i = 0; i < particles.size(); ++i) {
+    const Particle& particle = particles[i];
+    if (!std::isfinite(particle.mass_kg) || particle.mass_kg <= 0.0) {
+      std::ostringstream got;
+      got << particle.mass_kg;
+      Reject(name_, i, "mass must be finite and > 0, got " + got.str());
+    }
+    if (!particle.position_m.allFinite()) Reject(name_, i, "position must be 3 finite numbers");
+  }
+
+  // Seed "pre-computation": M, x̄_CM, r̄_i, Ī = Σ −m_i r̃̄_i r̃̄_i.
+  Eigen::Vector3d weighted_sum = Eigen::Vector3d::Zero();
+  masses_kg_.reserve(particles.size());
+  for (const Particle& particle : particles) {
+    mass_kg_ += particle.mass_kg;
+    weighted_sum += particle.mass_kg * particle.position_m;
+    masses_kg_.push_back(particle.mass_kg);
+  }
+  reference_com_m_ = weighted_sum / mass_kg_;
+  inertia_.setZero();
+  offsets_m_.reserve(particles.size());
+  for (const Particle& particle : particles) {
+    const Eigen::Vector3d offset = particle.position_m - reference_com_m_;
+    offsets_m_.push_back(offset);
+    inertia_ -= particle.mass_kg * CrossSquared(offset);
+  }
+
+  // Principal frame: eigenvectors as the columns of a proper rotation R_BP.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia_);
+  Eigen::Matrix3d axes = solver.eigenvectors();
+  if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
+  principal_axes_ = Eigen::Quaterniond(axes).normalized();
+  principal_moments_ = solver.eigenvalues();
+
+  const double largest = principal_moments_.maxCoeff();
+  Eigen::Vector3d in_range = Eigen::Vector3d::Zero();
+  inverse_principal_moments_.setZero();
+  for (int k = 0; k < 3; ++k) {
+    if (largest > 0.0 && principal_moments_[k] > kNullMomentRatio * largest) {
+      inverse_principal_moments_[k] = 1.0 / principal_moments_[k];
+      in_range[k] = 1.0;
+      ++rank_;
+    } else {
+      principal_moments_[k] = 0.0;
+    }
+  }
+  const Eigen::Matrix3d rotation = principal_axes_.toRotationMatrix();
+  inverse_inertia_ = rotation * inverse_principal_moments_.asDiagonal() * rotation.transpose();
+  range_projector_ = rotation * in_range.asDiagonal() * rotation.transpose();
+  isotropic_ = rank_ == 3 &&
+               principal_moments_[2] - principal_moments_[0] <= 1e-12 * principal_moments_[2];
+}
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,71 @@
+#include "rigid_body_sim/core/held_loads.h"
+
+namespace rigid_body_sim {
+namespace {
+
+// The vector of the antisymmetric matrix M − Mᵀ: vee(C Aᵀ − A Cᵀ) with M = C Aᵀ.
+Eigen::Vector3d VeeOfAntisymmetricPart(const Eigen::Matrix3d& m) {
+  return Eigen::Vector3d(m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1));
+}
+
+}  // namespace
+
+void HeldLoads::Clear() {
+  force_world_.setZero();
+  force_body_.setZero();
+  torque_world_.setZero();
+  torque_body_.setZero();
+  force_moment_.setZero();
+  has_torque_ = false;
+}
+
+void HeldLoads::AddWorldForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset) {
+  force_world_ += force;
+  force_moment_ += force * offset.transpose();
+  has_torque_ = true;
+}
+
+void HeldLoads::AddBodyForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset) {
+  force_body_ += force;
+  torque_body_ += offset.cross(force);
+  has_torque_ = true;
+}
+
+void HeldLoads::AddWorldCouple(const Eigen::Vector3d& couple) {
+  torque_world_ += couple;
+  has_torque_ = true;
+}
+
+void HeldLoads::AddBodyCouple(const Eigen::Vector3d& couple) {
+  torque_body_ += couple;
+  has_torque_ = true;
+}
+
+void HeldLoads::AddCentralForce(const Eigen::Vector3d& force) { force_world_ += force; }
+
+void HeldLoads::SetTorqueProjector(const Eigen::Matrix3d& range_projector) {
+  torque_projector_ = range_projector;
+  projects_torque_ = !range_projector.isIdentity(0.0);
+}
+
+double HeldLoads::DroppedTorque(const Eigen::Matrix3d& rotation) const {
+  if (!projects_torque_ || !has_torque_) return 0.0;
+  const Eigen::Vector3d torque_body =
+      torque_body_ + rotation.transpose() * torque_world_ +
+      rotation.transpose() * VeeOfAntisymmetricPart(force_moment_ * rotation.transpose());
+  return (torque_body - torque_projector_ * torque_body).norm();
+}
+
+Wrench HeldLoads::At(double /*time_in_step_s*/, const Eigen::Matrix3d& rotation) const {
+  Wrench wrench;
+  wrench.force = force_world_ + rotation * force_body_;
+  if (!has_torque_) return wrench;
+  wrench.torque = torque_world_ + rotation * torque_body_ +
+                  VeeOfAntisymmetricPart(force_moment_ * rotation.transpose());
+  if (projects_torque_) {
+    wrench.torque = rotation * (torque_projector_ * (rotation.transpose() * wrench.torque));
+  }
+  return wrench;
+}
+
+}  // namespace rigid_body_sim

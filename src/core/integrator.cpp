@@ -1,0 +1,34 @@
+#include "rigid_body_sim/core/integrator.h"
+
+#include <stdexcept>
+
+#include "rigid_body_sim/core/integrators/euler.h"
+#include "rigid_body_sim/core/integrators/exact_free.h"
+#include "rigid_body_sim/core/integrators/rk4.h"
+#include "rigid_body_sim/core/integrators/splitting.h"
+#include "rigid_body_sim/core/integrators/splitting4.h"
+#include "rigid_body_sim/core/integrators/symplectic_euler.h"
+
+namespace rigid_body_sim {
+
+const char* const kDefaultIntegrator = "splitting4";
+
+const std::vector<std::string>& IntegratorNames() {
+  static const std::vector<std::string> names = {
+      kDefaultIntegrator, "euler", "symplectic_euler", "rk4", "splitting", "exact_free"};
+  return names;
+}
+
+std::unique_ptr<Integrator> MakeIntegrator(const std::string& name) {
+  if (name == "euler") return std::make_unique<EulerIntegrator>();
+  if (name == "symplectic_euler") return std::make_unique<SymplecticEulerIntegrator>();
+  if (name == "rk4") return std::make_unique<Rk4Integrator>();
+  if (name == "splitting") return std::make_unique<SplittingIntegrator>();
+  if (name == "splitting4") return std::make_unique<Splitting4Integrator>();
+  if (name == "exact_free") return std::make_unique<ExactFreeIntegrator>();
+  std::string known;
+  for (const std::string& n : IntegratorNames()) known += (known.empty() ? "" : ", ") + n;
+  throw std::invalid_argument("unknown integrator '" + name + "' (known: " + known + ")");
+}
+
+}  // namespace rigid_body_sim

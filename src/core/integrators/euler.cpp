@@ -1,0 +1,30 @@
+#include "rigid_body_sim/core/integrators/euler.h"
+
+#include "rigid_body_sim/core/integrators/free_rotation.h"
+
+namespace rigid_body_sim {
+namespace {
+
+Eigen::Matrix3d Skew(const Eigen::Vector3d& w) {
+  Eigen::Matrix3d m;
+  m << 0.0, -w.z(), w.y(), w.z(), 0.0, -w.x(), -w.y(), w.x(), 0.0;
+  return m;
+}
+
+}  // namespace
+
+void EulerIntegrator::Step(const BodyModel& model, const Load* load, double dt_s,
+                           BodyState* state) const {
+  Eigen::Matrix3d a = state->orientation.toRotationMatrix();
+  // ω = I⁻¹L with I⁻¹ = A Ī⁻¹ Aᵀ: what the seed computed at the end of the previous step.
+  const Eigen::Vector3d omega = a * (model.inverse_inertia() * (a.transpose() * state->angular_momentum));
+  const Wrench wrench = load != nullptr ? load->At(0.0, a) : Wrench{};
+  state->position += dt_s * model.inverse_mass() * state->linear_momentum;
+  state->linear_momentum += dt_s * wrench.force;
+  a += dt_s * Skew(omega) * a;
+  state->angular_momentum += dt_s * wrench.torque;
+  GramSchmidt(&a);
+  state->orientation = Eigen::Quaterniond(a).normalized();
+}
+
+}  // namespace rigid_body_sim

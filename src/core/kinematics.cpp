@@ -1,0 +1,60 @@
+#include "rigid_body_sim/core/kinematics.h"
+
+namespace rigid_body_sim {
+
+Eigen::Vector3d LinearVelocity(const BodyModel& model, const BodyState& state) {
+  return model.inverse_mass() * state.linear_momentum;
+}
+
+Eigen::Vector3d AngularVelocity(const BodyModel& model, const BodyState& state) {
+  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
+  return rotation * (model.inverse_inertia() * (rotation.transpose() * state.angular_momentum));
+}
+
+Eigen::Matrix3d WorldInertia(const BodyModel& model, const BodyState& state) {
+  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
+  return rotation * model.inertia() * rotation.transpose();
+}
+
+double KineticEnergy(const BodyModel& model, const BodyState& state) {
+  return 0.5 * model.inverse_mass() * state.linear_momentum.squaredNorm() +
+         0.5 * state.angular_momentum.dot(AngularVelocity(model, state));
+}
+
+void ParticlePositions(const BodyModel& model, const BodyState& state,
+                       std::vector<Eigen::Vector3d>* positions) {
+  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
+  const std::vector<Eigen::Vector3d>& offsets = model.particle_offsets();
+  positions->resize(offsets.size());
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    (*positions)[i] = state.position + rotation * offsets[i];
+  }
+}
+
+void ParticleVelocities(const BodyModel& model, const BodyState& state,
+                        std::vector<Eigen::Vector3d>* velocities) {
+  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
+  const Eigen::Vector3d velocity = LinearVelocity(model, state);
+  const Eigen::Vector3d omega = AngularVelocity(model, state);
+  const std::vector<Eigen::Vector3d>& offsets = model.particle_offsets();
+  velocities->resize(offsets.size());
+  for (std::size_t i = 0; i < offsets.size(); ++i) {
+    (*velocities)[i] = velocity + omega.cross(rotation * offsets[i]);
+  }
+}
+
+BodyState StateFromTwist(const BodyModel& model, const Eigen::Vector3d& position,
+                         const Eigen::Quaterniond& orientation,
+                         const Eigen::Vector3d& linear_velocity,
+                         const Eigen::Vector3d& angular_velocity) {
+  BodyState state;
+  state.position = position;
+  state.orientation = orientation.normalized();
+  state.linear_momentum = model.mass() * linear_velocity;
+  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
+  // I ω lies in the range of I by construction, so no projection is needed.
+  state.angular_momentum = rotation * (model.inertia() * (rotation.transpose() * angular_velocity));
+  return state;
+}
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,111 @@
+#include <random>
+
+#include <gtest/gtest.h>
+
+#include "rigid_body_sim/core/wrench_table.h"
+#include "test_bodies.h"
+
+namespace rigid_body_sim {
+namespace {
+
+class WrenchTableTest : public ::testing::Test {
+ protected:
+  std::vector<BodyModel> models_{test::Diag123Body(), test::RodBody()};
+  WrenchTable table_{{4, 3}};
+  std::vector<HeldLoads> loads_ = std::vector<HeldLoads>(2);
+  std::vector<char> loaded_ = std::vector<char>(2, 0);
+
+  Wrench Reduced(double t, double timeout, std::size_t body, const Eigen::Matrix3d& a) {
+    table_.Reduce(t, timeout, 1e-9, models_, &loads_, &loaded_);
+    return loaded_[body] ? loads_[body].At(0.0, a) : Wrench{};
+  }
+};
+
+ParticleWrench WorldForce(std::size_t body, std::size_t particle, const Eigen::Vector3d& f,
+                          double start = 0.0) {
+  ParticleWrench w;
+  w.body = body;
+  w.particle = particle;
+  w.force = f;
+  w.start_s = start;
+  return w;
+}
+
+TEST_F(WrenchTableTest, ReducesToForceAndTorqueAboutTheCom) {
+  // Random world- and body-axes forces and couples at a random orientation,
+  // against the seed's τ = Σ r_i × f_i summed directly in world axes.
+  std::mt19937 rng(3);
+  std::normal_distribution<double> n(0.0, 1.0);
+  const Eigen::Matrix3d a =
+      Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+  Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < 4; ++i) {
+    ParticleWrench w = WorldForce(0, i, Eigen::Vector3d(n(rng), n(rng), n(rng)));
+    w.couple = Eigen::Vector3d(n(rng), n(rng), n(rng));
+    w.axes = i % 2 ? WrenchAxes::kBody : WrenchAxes::kWorld;
+    ASSERT_EQ(table_.Hold(w), WrenchRejection::kAccepted);
+    const Eigen::Matrix3d to_world = i % 2 ? a : Eigen::Matrix3d::Identity();
+    const Eigen::Vector3d r = a * models_[0].particle_offsets()[i];
+    force += to_world * w.force;
+    torque += r.cross(to_world * w.force) + to_world * w.couple;
+  }
+  const Wrench reduced = Reduced(0.0, 0.0, 0, a);
+  EXPECT_TRUE(reduced.force.isApprox(force, 1e-13));
+  EXPECT_TRUE(reduced.torque.isApprox(torque, 1e-13));
+  EXPECT_FALSE(loaded_[1]);
+}
+
+TEST_F(WrenchTableTest, LaterWrenchForTheSameParticleReplaces) {
+  table_.Hold(WorldForce(0, 1, {1, 0, 0}));
+  table_.Hold(WorldForce(0, 2, {0, 2, 0}));
+  table_.Hold(WorldForce(0, 1, {0, 0, 5}));
+  EXPECT_EQ(table_.size(), 2u);
+  const Wrench w = Reduced(0.0, 0.0, 0, Eigen::Matrix3d::Identity());
+  EXPECT_TRUE(w.force.isApprox(Eigen::Vector3d(0, 2, 5)));
+}
+
+TEST_F(WrenchTableTest, ActiveFromStartUntilTimeout) {
+  table_.Hold(WorldForce(1, 0, {1, 0, 0}, 0.5));
+  const Eigen::Matrix3d id = Eigen::Matrix3d::Identity();
+  EXPECT_TRUE(Reduced(0.499, 0.25, 1, id).force.isZero());  // not yet started
+  EXPECT_FALSE(loaded_[1]);
+  EXPECT_TRUE(Reduced(0.5, 0.25, 1, id).force.isApprox(Eigen::Vector3d(1, 0, 0)));  // start <= t
+  EXPECT_TRUE(Reduced(0.7, 0.25, 1, id).force.isApprox(Eigen::Vector3d(1, 0, 0)));
+  EXPECT_TRUE(Reduced(0.75, 0.25, 1, id).force.isZero());  // t < start + timeout fails
+  EXPECT_EQ(table_.size(), 0u);                             // and it is dropped for good
+}
+
+TEST_F(WrenchTableTest, WithoutTimeoutHeldUntilCleared) {
+  table_.Hold(WorldForce(1, 2, {0, 1, 0}));
+  const Eigen::Matrix3d id = Eigen::Matrix3d::Identity();
+  EXPECT_FALSE(Reduced(1e6, 0.0, 1, id).force.isZero());
+  table_.Clear();
+  EXPECT_TRUE(Reduced(1e6, 0.0, 1, id).force.isZero());
+  EXPECT_FALSE(loaded_[1]);
+}
+
+TEST_F(WrenchTableTest, RejectsBadWrenchesAndChangesNothing) {
+  table_.Hold(WorldForce(0, 0, {1, 1, 1}));
+  EXPECT_EQ(table_.Hold(WorldForce(2, 0, {1, 0, 0})), WrenchRejection::kUnknownBody);
+  EXPECT_EQ(table_.Hold(WorldForce(1, 3, {1, 0, 0})), WrenchRejection::kParticleOutOfRange);
+  EXPECT_EQ(table_.Hold(WorldForce(0, 0, {std::nan(""), 0, 0})), WrenchRejection::kNonFinite);
+  ParticleWrench infinite_couple = WorldForce(0, 0, {0, 0, 0});
+  infinite_couple.couple.x() = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(table_.Hold(infinite_couple), WrenchRejection::kNonFinite);
+  EXPECT_EQ(table_.size(), 1u);
+  EXPECT_TRUE(Reduced(0.0, 0.0, 0, Eigen::Matrix3d::Identity()).force.isApprox(Eigen::Vector3d(1, 1, 1)));
+  EXPECT_STREQ(ToString(WrenchRejection::kParticleOutOfRange), "particle_out_of_range");
+}
+
+TEST(HeldLoads, DropsTheCoupleAlongARodsAxis) {
+  const BodyModel rod = test::RodBody();
+  HeldLoads loads;
+  loads.SetTorqueProjector(rod.range_projector());
+  loads.AddWorldCouple({1.0, 2.0, 3.0});
+  const Wrench w = loads.At(0.0, Eigen::Matrix3d::Identity());
+  EXPECT_TRUE(w.torque.isApprox(Eigen::Vector3d(1.0, 2.0, 0.0)));
+  EXPECT_NEAR(loads.DroppedTorque(Eigen::Matrix3d::Identity()), 3.0, 1e-15);
+}
+
+}  // namespace
+}  // namespace rigid_body_sim
