@@ -5,6 +5,7 @@
 
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/reference/free_body.h"
 #include "test_bodies.h"
 
 namespace rigid_body_sim {
@@ -45,7 +46,7 @@ double CoarseDt(int order) { return order == 1 ? 2e-3 : order == 2 ? 1e-2 : 4e-2
 TEST(Convergence, TorqueFreeOrderOfEveryScheme) {
   const BodyModel body = test::Diag123Body();
   const double t = 4.0;
-  const BodyState reference = test::ExactTorqueFree(body, Tumbling(), t);
+  const BodyState reference = ExactFreeBodyState(body, Tumbling(), t);
   for (const std::string& name : IntegratorNames()) {
     const auto integrator = MakeIntegrator(name);
     const double dt = CoarseDt(integrator->order());

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/reference/free_body.h"
 #include "test_bodies.h"
 
 namespace rigid_body_sim {
@@ -47,7 +48,7 @@ std::vector<double> FlipTimes(Advance advance) {
 TEST(Dzhanibekov, ClosedFormFlipsTwelveTimes) {
   const BodyModel body = test::Diag123Body();
   const std::vector<double> flips = FlipTimes([&](int n, BodyState* state) {
-    *state = test::ExactTorqueFree(body, Initial(), n * kDt);
+    *state = ExactFreeBodyState(body, Initial(), n * kDt);
   });
   ASSERT_EQ(flips.size(), 12u);
   EXPECT_NEAR(flips[0], 2.7411, 1e-4);
@@ -57,7 +58,7 @@ TEST(Dzhanibekov, ClosedFormFlipsTwelveTimes) {
 TEST(Dzhanibekov, SecondAndFourthOrderSchemesMatchTheClosedForm) {
   const BodyModel body = test::Diag123Body();
   const std::vector<double> exact = FlipTimes([&](int n, BodyState* state) {
-    *state = test::ExactTorqueFree(body, Initial(), n * kDt);
+    *state = ExactFreeBodyState(body, Initial(), n * kDt);
   });
   ASSERT_FALSE(exact.empty());
   for (const std::string& name : IntegratorNames()) {
@@ -67,7 +68,7 @@ TEST(Dzhanibekov, SecondAndFourthOrderSchemesMatchTheClosedForm) {
     BodyState final_state = Initial();
     for (int n = 0; n < 60000; ++n) integrator->Step(body, nullptr, kDt, &final_state);
     const double final_error = test::AngleBetween(
-        final_state.orientation, test::ExactTorqueFree(body, Initial(), kDuration).orientation);
+        final_state.orientation, ExactFreeBodyState(body, Initial(), kDuration).orientation);
     std::cout << name << ": " << flips.size() << " flips, first at "
               << (flips.empty() ? -1.0 : flips[0]) << " s (closed form " << exact[0]
               << " s), orientation error at 60 s " << final_error << " rad\n";

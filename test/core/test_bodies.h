@@ -8,7 +8,6 @@
 
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
-#include "rigid_body_sim/core/reference/torque_free.h"
 
 namespace rigid_body_sim::test {
 
@@ -49,19 +48,6 @@ inline BodyModel PointBody() { return BodyModel("point", {{2.0, {0.3, -0.1, 0.2}
 // Rotation angle of q_a⁻¹ q_b [rad].
 inline double AngleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
   return 2.0 * std::asin(std::min(1.0, (a.conjugate() * b).vec().norm()));
-}
-
-// The closed-form torque-free state at t of a body starting from `initial`
-// (the position drifts with the constant p).
-inline BodyState ExactTorqueFree(const BodyModel& model, const BodyState& initial, double t_s) {
-  const Eigen::Quaterniond& body_from_principal = model.principal_axes();
-  const Eigen::Quaterniond principal = initial.orientation * body_from_principal;
-  const TorqueFreeMotion motion(model.principal_moments(),
-                                principal.conjugate() * initial.angular_momentum, principal);
-  BodyState state = initial;
-  state.position += t_s * model.inverse_mass() * initial.linear_momentum;
-  state.orientation = (motion.Orientation(t_s) * body_from_principal.conjugate()).normalized();
-  return state;
 }
 
 }  // namespace rigid_body_sim::test
