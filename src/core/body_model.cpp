@@ -6,7 +6,7 @@
 
 #include <Eigen/Eigenvalues>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 // r̃ r̃ for the cross-product matrix r̃ of r: r rᵀ − (r·r) 1.
@@ -79,4 +79,4 @@ BodyModel::BodyModel(std::string name, std::vector<Particle> particles) : name_(
                principal_moments_[2] - principal_moments_[0] <= 1e-12 * principal_moments_[2];
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -1,6 +1,6 @@
 #include "rigid_body_sim/core/held_loads.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 // The vector of the antisymmetric matrix M − Mᵀ: vee(C Aᵀ − A Cᵀ) with M = C Aᵀ.
@@ -68,4 +68,4 @@ Wrench HeldLoads::At(double /*time_in_step_s*/, const Eigen::Matrix3d& rotation)
   return wrench;
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "rigid_body_sim/core/integrators/casimir_splitting.h"
+#include "rigid_body_sim/core/integrators/casimir_splitting4.h"
 #include "rigid_body_sim/core/integrators/euler.h"
 #include "rigid_body_sim/core/integrators/exact_free.h"
 #include "rigid_body_sim/core/integrators/rk4.h"
@@ -9,13 +11,14 @@
 #include "rigid_body_sim/core/integrators/splitting4.h"
 #include "rigid_body_sim/core/integrators/symplectic_euler.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
-const char* const kDefaultIntegrator = "splitting4";
+const char* const kDefaultIntegrator = "casimir_splitting4";
 
 const std::vector<std::string>& IntegratorNames() {
   static const std::vector<std::string> names = {
-      kDefaultIntegrator, "euler", "symplectic_euler", "rk4", "splitting", "exact_free"};
+      kDefaultIntegrator, "euler", "symplectic_euler", "rk4", "splitting", "splitting4",
+      "casimir_splitting", "exact_free"};
   return names;
 }
 
@@ -25,10 +28,12 @@ std::unique_ptr<Integrator> MakeIntegrator(const std::string& name) {
   if (name == "rk4") return std::make_unique<Rk4Integrator>();
   if (name == "splitting") return std::make_unique<SplittingIntegrator>();
   if (name == "splitting4") return std::make_unique<Splitting4Integrator>();
+  if (name == "casimir_splitting") return std::make_unique<CasimirSplittingIntegrator>();
+  if (name == "casimir_splitting4") return std::make_unique<CasimirSplitting4Integrator>();
   if (name == "exact_free") return std::make_unique<ExactFreeIntegrator>();
   std::string known;
   for (const std::string& n : IntegratorNames()) known += (known.empty() ? "" : ", ") + n;
   throw std::invalid_argument("unknown integrator '" + name + "' (known: " + known + ")");
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -1,6 +1,6 @@
 #include "rigid_body_sim/core/kinematics.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 Eigen::Vector3d LinearVelocity(const BodyModel& model, const BodyState& state) {
   return model.inverse_mass() * state.linear_momentum;
@@ -57,4 +57,4 @@ BodyState StateFromTwist(const BodyModel& model, const Eigen::Vector3d& position
   return state;
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 void RequirePositive(double value, const char* key) {
@@ -64,4 +64,4 @@ std::vector<Particle> MakeCylinder(double mass_kg, double radius_m, double lengt
                   [radius_m](const Eigen::Vector3d& p) { return p.head<2>().norm() <= radius_m; });
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

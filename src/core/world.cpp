@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <unordered_set>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 // Stamps within this fraction of dt of t_n count as t_n: far below dt, far
@@ -91,4 +91,4 @@ void World::Reset() {
 
 void World::SetBodyState(std::size_t body, const BodyState& state) { states_.at(body) = state; }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 const char* ToString(WrenchRejection rejection) {
   switch (rejection) {
@@ -76,4 +76,4 @@ void WrenchTable::Reduce(double t_s, double timeout_s, double tolerance_s,
   }
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

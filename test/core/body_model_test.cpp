@@ -6,7 +6,7 @@
 #include "rigid_body_sim/core/shapes.h"
 #include "test_bodies.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 TEST(BodyModel, BoxOfParticlesHasTheDiscreteBoxInertia) {
@@ -126,4 +126,4 @@ TEST(BodyModel, ValidationNamesTheEntryAndTheProblem) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -8,7 +8,7 @@
 #include "rigid_body_sim/core/kinematics.h"
 #include "test_bodies.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 // Near the separatrix, where energy errors are largest: ω0 = (0.1, 2, 0.1).
@@ -71,4 +71,4 @@ TEST(Conservation, EveryIntegratorStaysOrthonormalOverAMillionSteps) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -8,7 +8,7 @@
 #include "rigid_body_sim/core/reference/free_body.h"
 #include "test_bodies.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 struct Band {
@@ -94,4 +94,4 @@ TEST(Convergence, ForcedOrderOfEveryScheme) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

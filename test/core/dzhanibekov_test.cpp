@@ -10,7 +10,7 @@
 #include "rigid_body_sim/core/reference/free_body.h"
 #include "test_bodies.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 constexpr double kDt = 1e-3;
@@ -83,4 +83,4 @@ TEST(Dzhanibekov, SecondAndFourthOrderSchemesMatchTheClosedForm) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -5,7 +5,7 @@
 #include "rigid_body_sim/core/kinematics.h"
 #include "test_bodies.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 Eigen::Matrix3d Tilde(const Eigen::Vector3d& w) {
@@ -65,4 +65,4 @@ TEST(Euler, ReproducesTheSeedStepByHand) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -18,7 +18,7 @@
 #include "rigid_body_sim/core/reference/torque_free.h"
 #include "test_bodies.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 using Eigen::Quaterniond;
@@ -369,4 +369,4 @@ TEST(ExactFree, DegenerateBodiesStayFinite) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

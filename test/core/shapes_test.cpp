@@ -3,7 +3,7 @@
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/shapes.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 // A grid of n cells per edge misses the solid's boundary by about a cell, so
@@ -41,4 +41,4 @@ TEST(Shapes, BadArgumentsAreNamed) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -9,7 +9,7 @@
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 
-namespace rigid_body_sim::test {
+namespace rigid_body_sim::core::test {
 
 // Four unit masses at ±a e_x, ±b e_y (a = 1 m, b = √½ m): a flat body with
 // Ī = diag(1, 2, 3) kg m² in its own axes, the Dzhanibekov body.
@@ -50,4 +50,4 @@ inline double AngleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond
   return 2.0 * std::asin(std::min(1.0, (a.conjugate() * b).vec().norm()));
 }
 
-}  // namespace rigid_body_sim::test
+}  // namespace rigid_body_sim::core::test

@@ -7,7 +7,7 @@
 #include "rigid_body_sim/core/world.h"
 #include "test_bodies.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 World MakeWorld(const WorldOptions& options) {
@@ -122,4 +122,4 @@ TEST(World, BadOptionsAreNamed) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -5,7 +5,7 @@
 #include "rigid_body_sim/core/wrench_table.h"
 #include "test_bodies.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 class WrenchTableTest : public ::testing::Test {
@@ -108,4 +108,4 @@ TEST(HeldLoads, DropsTheCoupleAlongARodsAxis) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 // A point mass in the body's reference coordinates (as written in the scene).
 struct Particle {
@@ -77,4 +77,4 @@ class BodyModel {
   bool isotropic_ = false;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -4,7 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 struct BodyState {
   Eigen::Vector3d position = Eigen::Vector3d::Zero();              // x_CM, world [m]
@@ -13,4 +13,4 @@ struct BodyState {
   Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();      // L about the COM, world [kg m²/s]
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -11,7 +11,7 @@
 
 #include "rigid_body_sim/core/load.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class HeldLoads final : public Load {
  public:
@@ -45,4 +45,4 @@ class HeldLoads final : public Load {
   bool projects_torque_ = false;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -9,7 +9,7 @@
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/load.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class Integrator {
  public:
@@ -30,4 +30,4 @@ extern const char* const kDefaultIntegrator;
 // Throws std::invalid_argument naming the unknown integrator and the known ones.
 std::unique_ptr<Integrator> MakeIntegrator(const std::string& name);
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -9,7 +9,7 @@
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 // v = p / M, world [m/s].
 Eigen::Vector3d LinearVelocity(const BodyModel& model, const BodyState& state);
@@ -38,4 +38,4 @@ BodyState StateFromTwist(const BodyModel& model, const Eigen::Vector3d& position
                          const Eigen::Vector3d& linear_velocity,
                          const Eigen::Vector3d& angular_velocity);
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

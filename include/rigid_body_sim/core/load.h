@@ -4,7 +4,7 @@
 
 #include <Eigen/Core>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 // Total force at the COM [N] and torque about the COM [N m], world axes.
 struct Wrench {
@@ -24,4 +24,4 @@ class Load {
   virtual bool has_torque() const = 0;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

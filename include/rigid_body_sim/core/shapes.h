@@ -9,7 +9,7 @@
 
 #include "rigid_body_sim/core/body_model.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 // Equal masses at the centres of resolution³ cells filling a box of edge
 // lengths size_m (x, y, z). Throws std::invalid_argument on mass <= 0, a
@@ -25,4 +25,4 @@ std::vector<Particle> MakeSphere(double mass_kg, double radius_m, int resolution
 std::vector<Particle> MakeCylinder(double mass_kg, double radius_m, double length_m,
                                    int resolution);
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -16,7 +16,7 @@
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/wrench_table.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 struct WorldOptions {
   std::string integrator = kDefaultIntegrator;
@@ -77,4 +77,4 @@ class World {
   std::uint64_t dropped_couples_ = 0;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -13,7 +13,7 @@
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/held_loads.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 enum class WrenchAxes { kWorld, kBody };
 
@@ -58,4 +58,4 @@ class WrenchTable {
   std::unordered_map<std::uint64_t, std::size_t> index_;  // key → position in entries_
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

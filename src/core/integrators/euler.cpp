@@ -2,7 +2,7 @@
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 Eigen::Matrix3d Skew(const Eigen::Vector3d& w) {
@@ -27,4 +27,4 @@ void EulerIntegrator::Step(const BodyModel& model, const Load* load, double dt_s
   state->orientation = Eigen::Quaterniond(a).normalized();
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

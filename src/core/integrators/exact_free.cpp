@@ -2,7 +2,7 @@
 
 #include "rigid_body_sim/core/reference/torque_free.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 void HalfKick(const Load& load, double t_s, double dt_s, BodyState* state) {
@@ -28,4 +28,4 @@ void ExactFreeIntegrator::Step(const BodyModel& model, const Load* load, double 
   if (load != nullptr) HalfKick(*load, dt_s, dt_s, state);
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

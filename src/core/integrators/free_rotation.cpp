@@ -2,39 +2,44 @@
 
 #include <cmath>
 
-namespace rigid_body_sim {
-namespace {
+namespace rigid_body_sim::core {
+void SinCos(double x, double* sin_x, double* cos_x) {
+  if (std::abs(x) > 0.0625) {
+    *sin_x = std::sin(x);
+    *cos_x = std::cos(x);
+    return;
+  }
+  const double x2 = x * x;
+  *sin_x = x * (1.0 - x2 / 6.0 * (1.0 - x2 / 20.0 * (1.0 - x2 / 42.0 * (1.0 - x2 / 72.0))));
+  *cos_x = 1.0 - x2 / 2.0 * (1.0 - x2 / 12.0 * (1.0 - x2 / 30.0 * (1.0 - x2 / 56.0 * (1.0 - x2 / 90.0))));
+}
 
-// The flow of H_k = Π_k²/2λ_k for time h: the body turns by θ = h Π_k/λ_k
-// about principal axis k, q_WP ← q_WP ⊗ exp(θ e_k), and Π ← R_k(θ)ᵀ Π.
-void AxisFlow(int k, double inverse_moment, double h, Eigen::Vector3d* momentum,
+void AxisFlow(int k, double coefficient, double h, Eigen::Vector3d* body_momentum,
               Eigen::Quaterniond* principal_orientation) {
-  if (inverse_moment == 0.0) return;
-  const double half_angle = 0.5 * h * (*momentum)[k] * inverse_moment;
-  const double half_sin = std::sin(half_angle);
-  const double half_cos = std::cos(half_angle);
+  if (coefficient == 0.0) return;
+  double half_sin, half_cos;
+  SinCos(0.5 * h * coefficient * (*body_momentum)[k], &half_sin, &half_cos);
   const double cos_angle = 1.0 - 2.0 * half_sin * half_sin;
   const double sin_angle = 2.0 * half_sin * half_cos;
   const int i = (k + 1) % 3;
   const int j = (k + 2) % 3;
-  const double pi = (*momentum)[i];
-  const double pj = (*momentum)[j];
-  (*momentum)[i] = cos_angle * pi + sin_angle * pj;
-  (*momentum)[j] = -sin_angle * pi + cos_angle * pj;
+  const double pi = (*body_momentum)[i];
+  const double pj = (*body_momentum)[j];
+  (*body_momentum)[i] = cos_angle * pi + sin_angle * pj;
+  (*body_momentum)[j] = -sin_angle * pi + cos_angle * pj;
   Eigen::Quaterniond turn(half_cos, 0.0, 0.0, 0.0);
   turn.vec()[k] = half_sin;
   *principal_orientation = *principal_orientation * turn;
 }
 
-}  // namespace
-
 Eigen::Quaterniond ExpMap(const Eigen::Vector3d& rotation_vector) {
   const double angle = rotation_vector.norm();
-  const double half = 0.5 * angle;
+  double half_sin, half_cos;
+  SinCos(0.5 * angle, &half_sin, &half_cos);
   // sin(θ/2)/θ by its series near 0, where the ratio loses precision.
-  const double sin_ratio = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : std::sin(half) / angle;
+  const double sin_ratio = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : half_sin / angle;
   Eigen::Quaterniond q;
-  q.w() = std::cos(half);
+  q.w() = half_cos;
   q.vec() = sin_ratio * rotation_vector;
   return q;
 }
@@ -65,4 +70,4 @@ void GramSchmidt(Eigen::Matrix3d* rotation) {
   a.col(2) = b3;
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -1,6 +1,6 @@
 #include "rigid_body_sim/core/integrators/rk4.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 // d/dt of (x, q, p, L); q as a plain 4-vector (w, x, y, z) so stages can add.
@@ -67,4 +67,4 @@ void Rk4Integrator::Step(const BodyModel& model, const Load* load, double dt_s,
   state->angular_momentum += w * (k1.torque + 2.0 * k2.torque + 2.0 * k3.torque + k4.torque);
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -4,7 +4,7 @@
 
 #include "strang_step.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 // Yoshida (1990): w1 + w0 + w1 = 1 and 2 w1³ + w0³ = 0 cancel the third-order
@@ -23,4 +23,4 @@ void Splitting4Integrator::Step(const BodyModel& model, const Load* load, double
   StrangStep(model, load, outer + inner, outer, state);
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -2,7 +2,7 @@
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 void Kick(const Load& load, double t_s, double h, BodyState* state) {
@@ -21,4 +21,4 @@ void StrangStep(const BodyModel& model, const Load* load, double t_offset_s, dou
   if (load != nullptr) Kick(*load, t_offset_s + h, 0.5 * h, state);
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -5,7 +5,7 @@
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/load.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 // One Strang step of length h starting `t_offset_s` into the integrator's
 // step: half kick, drift x += h·p/M, Lie–Poisson free rotation over h, half
@@ -13,4 +13,4 @@ namespace rigid_body_sim {
 void StrangStep(const BodyModel& model, const Load* load, double t_offset_s, double h,
                 BodyState* state);
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -2,7 +2,7 @@
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 void SymplecticEulerIntegrator::Step(const BodyModel& model, const Load* load, double dt_s,
                                      BodyState* state) const {
@@ -18,4 +18,4 @@ void SymplecticEulerIntegrator::Step(const BodyModel& model, const Load* load, d
   state->position += dt_s * model.inverse_mass() * state->linear_momentum;
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -1,6 +1,6 @@
 #include "rigid_body_sim/core/reference/constant_load.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 BodyState UnderConstantForce(const BodyState& initial, double mass_kg,
                              const Eigen::Vector3d& force, double t_s) {
@@ -19,4 +19,4 @@ BodyState UnderPrincipalTorque(const BodyState& initial, const Eigen::Vector3d& 
   return state;
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -2,7 +2,7 @@
 
 #include "rigid_body_sim/core/reference/torque_free.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 BodyState ExactFreeBodyState(const BodyModel& model, const BodyState& initial, double t_s) {
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
@@ -15,4 +15,4 @@ BodyState ExactFreeBodyState(const BodyModel& model, const BodyState& initial, d
   return state;
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

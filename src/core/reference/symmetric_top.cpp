@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 // With λ_1 = λ_2 = λ_t, ω = Π/λ_t + Π_3 (1/λ_3 − 1/λ_t) e_3, so Euler's
 // Π̇ = Π × ω = Ω_b (−Π_2, Π_1, 0) with Ω_b = Π_3 (1/λ_t − 1/λ_3): Π turns about
@@ -45,4 +45,4 @@ Eigen::Quaterniond SymmetricTopMotion::Orientation(double t_s) const {
   return (initial_orientation_ * precession * spin).normalized();
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -21,7 +21,7 @@
 // like ε/dn right next to the unstable axis 2 (dn → k'), and for D2 > 0 the
 // split G/λ1 + (…) cancels, costing a factor up to λ3/λ1 in ψ's relative error.
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 constexpr double kSymmetricTolerance = 1e-12;
@@ -253,4 +253,4 @@ double TorqueFreeMotion::period() const {
   }
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -6,7 +6,7 @@
 
 #include "rigid_body_sim/core/integrator.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class EulerIntegrator final : public Integrator {
  public:
@@ -16,4 +16,4 @@ class EulerIntegrator final : public Integrator {
             BodyState* state) const override;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -5,7 +5,7 @@
 
 #include "rigid_body_sim/core/integrator.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class Rk4Integrator final : public Integrator {
  public:
@@ -15,4 +15,4 @@ class Rk4Integrator final : public Integrator {
             BodyState* state) const override;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -8,7 +8,7 @@
 
 #include "rigid_body_sim/core/integrator.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class SplittingIntegrator final : public Integrator {
  public:
@@ -18,4 +18,4 @@ class SplittingIntegrator final : public Integrator {
             BodyState* state) const override;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -6,7 +6,7 @@
 
 #include "rigid_body_sim/core/integrator.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class SymplecticEulerIntegrator final : public Integrator {
  public:
@@ -16,4 +16,4 @@ class SymplecticEulerIntegrator final : public Integrator {
             BodyState* state) const override;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -7,7 +7,7 @@
 
 #include "rigid_body_sim/core/body_state.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 // x(t) = x0 + v0 t + ½ (F/M) t², p(t) = p0 + F t; orientation and L unchanged.
 // Requires L0 = 0 (the rotation is then frozen).
@@ -20,4 +20,4 @@ BodyState UnderConstantForce(const BodyState& initial, double mass_kg,
 BodyState UnderPrincipalTorque(const BodyState& initial, const Eigen::Vector3d& axis,
                                double moment, double omega0, double torque, double t_s);
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -6,7 +6,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class SymmetricTopMotion {
  public:
@@ -37,4 +37,4 @@ class SymmetricTopMotion {
   double precession_rate_ = 0.0;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -12,7 +12,7 @@
 
 #include "rigid_body_sim/core/reference/symmetric_top.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class TorqueFreeMotion {
  public:
@@ -92,4 +92,4 @@ class TorqueFreeMotion {
   Eigen::Quaterniond alignment_ = Eigen::Quaterniond::Identity();  // R_WP(0) Q(Π(0))ᵀ
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -1,0 +1,36 @@
+// A physics engine stepping copies of one free body, so that its run time and
+// error can be measured against ours on the same scene and dt.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace rigid_body_sim::bench {
+
+// The state of one copy, in our conventions: COM position, body-frame
+// orientation (body → world, the frame of Scene::particles), p = M v and L
+// about the COM, world axes.
+using PeerState = BodyState;
+
+class Peer {
+ public:
+  virtual ~Peer() = default;
+  // Engine and configuration, e.g. "mujoco_rk4".
+  virtual std::string name() const = 0;
+  // Builds `copies` independent copies of the scene's body (no gravity, no
+  // contacts, no damping), all in the scene's initial state.
+  virtual void Setup(const Scene& scene, int copies, double dt_s) = 0;
+  // Advances every copy by one step, applying the scene's forces at the
+  // current pose (ForcesAt with t = step index · dt).
+  virtual void Step() = 0;
+  virtual PeerState State(int copy) const = 0;
+};
+
+// Every peer configuration this build was compiled with (empty when no
+// engine was found); the names of those that were not found go to `missing`.
+std::vector<std::unique_ptr<Peer>> MakePeers(std::vector<std::string>* missing);
+
+}  // namespace rigid_body_sim::bench

@@ -1,0 +1,210 @@
+// Run time against error: every integrator of the core and every peer engine
+// configuration found at build time, on the scenes of scene.cpp, for each dt.
+// Writes one CSV row per (scene, method, dt); plot_work_precision.py draws it.
+//
+// usage: work_precision [output.csv] [--quick]
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "peer.h"
+#include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/kinematics.h"
+#include "rigid_body_sim/core/reference/constant_load.h"
+#include "rigid_body_sim/core/reference/free_body.h"
+#include "scene.h"
+#include "scene_load.h"
+
+namespace rigid_body_sim::bench {
+namespace {
+
+constexpr int kTimedBodies = 1000;
+constexpr int kTimingRepeats = 5;
+
+struct Errors {
+  double orientation_rad, position_m, energy_relative, momentum_relative;
+};
+
+double AngleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {
+  return 2.0 * std::asin(std::min(1.0, (a.conjugate() * b).vec().norm()));
+}
+
+Errors Compare(const BodyModel& model, const BodyState& state, const BodyState& reference) {
+  const double energy = KineticEnergy(model, reference);
+  const double momentum = reference.angular_momentum.norm();
+  return {AngleBetween(state.orientation, reference.orientation),
+          (state.position - reference.position).norm(),
+          std::abs(KineticEnergy(model, state) - energy) / energy,
+          momentum > 0 ? std::abs(state.angular_momentum.norm() - momentum) / momentum : 0.0};
+}
+
+// The body-frame L₂ sign changes along a trajectory sampled every step.
+struct FlipCounter {
+  double previous = 0.0;
+  std::vector<double> times;
+  void Observe(const BodyState& state, double t, double dt) {
+    const double l2 = (state.orientation.conjugate() * state.angular_momentum).y();
+    if (t > 0.0 && (previous < 0.0) != (l2 < 0.0)) {
+      times.push_back(t - dt + dt * previous / (previous - l2));
+    }
+    previous = l2;
+  }
+};
+
+long StepCount(const Scene& scene, double dt) { return std::lround(scene.duration_s / dt); }
+
+// Our integrator on one body over the whole scene.
+BodyState RunOurs(const Scene& scene, const BodyModel& model, const Integrator& integrator,
+                  double dt, FlipCounter* flips) {
+  SceneLoad load(scene, model);
+  const bool loaded = !scene.forces.empty() || !scene.constant_couple.isZero();
+  BodyState state = scene.initial;
+  const long steps = StepCount(scene, dt);
+  if (flips) flips->Observe(state, 0.0, dt);
+  for (long n = 0; n < steps; ++n) {
+    load.set_step_start(n * dt);
+    integrator.Step(model, loaded ? &load : nullptr, dt, &state);
+    if (flips) flips->Observe(state, (n + 1) * dt, dt);
+  }
+  return state;
+}
+
+// Median ns per body-step over kTimedBodies bodies.
+template <typename StepAll>
+double TimePerBodyStep(int steps, StepAll step_all) {
+  std::vector<double> samples;
+  for (int r = 0; r < kTimingRepeats; ++r) {
+    const auto start = std::chrono::steady_clock::now();
+    for (int n = 0; n < steps; ++n) step_all(n);
+    const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
+    samples.push_back(elapsed.count() / (double(steps) * kTimedBodies));
+  }
+  std::nth_element(samples.begin(), samples.begin() + samples.size() / 2, samples.end());
+  return samples[samples.size() / 2];
+}
+
+double TimeOurs(const Scene& scene, const BodyModel& model, const Integrator& integrator,
+                double dt, int steps) {
+  SceneLoad load(scene, model);
+  const bool loaded = !scene.forces.empty() || !scene.constant_couple.isZero();
+  std::vector<BodyState> states(kTimedBodies, scene.initial);
+  return TimePerBodyStep(steps, [&](int n) {
+    load.set_step_start(n * dt);
+    for (BodyState& state : states) integrator.Step(model, loaded ? &load : nullptr, dt, &state);
+  });
+}
+
+struct Reference {
+  BodyState state;
+  double own_error_rad = 0.0;  // estimate of the reference's orientation error
+  std::vector<double> flips;
+};
+
+// Closed form where there is one; otherwise rk4 at dt_fine and 2 dt_fine, whose
+// difference bounds the finer one's error by Richardson: e ≈ |Δ|/(2⁴ − 1).
+Reference MakeReference(const Scene& scene, const BodyModel& model, double dt_fine) {
+  Reference reference;
+  if (scene.closed_form && scene.constant_couple.isZero()) {
+    reference.state = ExactFreeBodyState(model, scene.initial, scene.duration_s);
+    FlipCounter flips;
+    const double dt = 1e-3;
+    for (long n = 0; n <= StepCount(scene, dt); ++n) {
+      flips.Observe(ExactFreeBodyState(model, scene.initial, n * dt), n * dt, dt);
+    }
+    reference.flips = flips.times;
+  } else if (scene.closed_form) {
+    const double omega0 = scene.initial.angular_momentum.z() / 3.0;
+    reference.state = UnderPrincipalTorque(scene.initial, Eigen::Vector3d::UnitZ(), 3.0, omega0,
+                                           scene.constant_couple.z(), scene.duration_s);
+  } else {
+    const auto rk4 = MakeIntegrator("rk4");
+    reference.state = RunOurs(scene, model, *rk4, dt_fine, nullptr);
+    const BodyState coarse = RunOurs(scene, model, *rk4, 2 * dt_fine, nullptr);
+    reference.own_error_rad = AngleBetween(coarse.orientation, reference.state.orientation) / 15.0;
+  }
+  return reference;
+}
+
+void WriteRow(std::ofstream& csv, const Scene& scene, const std::string& engine,
+              const std::string& method, double dt, const Errors& e, double ns,
+              const std::vector<double>& flips, const Reference& reference) {
+  std::string flip_columns = ",";
+  if (!reference.flips.empty()) {
+    double first_error = flips.empty() ? NAN : std::abs(flips[0] - reference.flips[0]);
+    flip_columns = std::to_string(flips.size()) + "," + std::to_string(first_error);
+  }
+  char line[512];
+  std::snprintf(line, sizeof line, "%s,%s,%s,%.0e,%.6e,%.6e,%.6e,%.6e,%.1f,%s\n",
+                scene.name.c_str(), engine.c_str(), method.c_str(), dt, e.orientation_rad,
+                e.position_m, e.energy_relative, e.momentum_relative, ns, flip_columns.c_str());
+  csv << line;
+  std::cout << line << std::flush;
+}
+
+}  // namespace
+}  // namespace rigid_body_sim::bench
+
+int main(int argc, char** argv) {
+  using namespace rigid_body_sim::core;
+  using namespace rigid_body_sim::bench;
+  std::string output = "bench/results/work_precision.csv";
+  bool quick = false;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--quick") quick = true;
+    else output = arg;
+  }
+  const std::vector<double> dts = quick ? std::vector<double>{1e-2, 1e-3}
+                                        : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5};
+  std::vector<std::string> missing;
+  std::vector<std::unique_ptr<Peer>> peers = MakePeers(&missing);
+  for (const std::string& name : missing) std::cerr << "work_precision: skipping " << name << "\n";
+
+  std::ofstream csv(output);
+  if (!csv) {
+    std::cerr << "work_precision: cannot write " << output << "\n";
+    return 1;
+  }
+  csv << "scene,engine,method,dt_s,orientation_error_rad,position_error_m,energy_rel_error,"
+         "momentum_rel_error,ns_per_body_step,flips,first_flip_error_s\n";
+  for (const Scene& scene : WorkPrecisionScenes()) {
+    const BodyModel model(scene.name, scene.particles);
+    const Reference reference = MakeReference(scene, model, dts.back() / 64);
+    std::cerr << scene.name << ": reference error estimate " << reference.own_error_rad << " rad\n";
+    const bool track_flips = !reference.flips.empty();
+    for (double dt : dts) {
+      const int timed_steps = static_cast<int>(std::min<long>(100, StepCount(scene, dt)));
+      for (const std::string& name : IntegratorNames()) {
+        const auto integrator = MakeIntegrator(name);
+        FlipCounter flips;
+        const BodyState final_state = RunOurs(scene, model, *integrator, dt, track_flips ? &flips : nullptr);
+        const double ns = TimeOurs(scene, model, *integrator, dt, timed_steps);
+        WriteRow(csv, scene, "rigid_body_sim", name, dt, Compare(model, final_state, reference.state),
+                 ns, flips.times, reference);
+      }
+      for (const std::unique_ptr<Peer>& peer : peers) {
+        FlipCounter flips;
+        peer->Setup(scene, 1, dt);
+        const long steps = StepCount(scene, dt);
+        if (track_flips) flips.Observe(peer->State(0), 0.0, dt);
+        for (long n = 0; n < steps; ++n) {
+          peer->Step();
+          if (track_flips) flips.Observe(peer->State(0), (n + 1) * dt, dt);
+        }
+        const PeerState final_state = peer->State(0);
+        peer->Setup(scene, kTimedBodies, dt);
+        const double ns = TimePerBodyStep(timed_steps, [&](int) { peer->Step(); });
+        const std::string full = peer->name();
+        const std::string engine = full.substr(0, full.find('_'));
+        WriteRow(csv, scene, engine, full, dt, Compare(model, final_state, reference.state), ns,
+                 flips.times, reference);
+      }
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,30 @@
+# The ROS node over the core: a library (parameters, conversions, the node
+# class) and a thin executable. Included from CMakeLists.txt after the core.
+include_directories(include ${catkin_INCLUDE_DIRS})
+
+add_library(rigid_body_sim_ros
+  src/ros/scene_params.cpp
+  src/ros/conversions.cpp
+  src/ros/step_pacer.cpp
+  src/ros/conservation_monitor.cpp
+  src/ros/simulation_node.cpp)
+target_include_directories(rigid_body_sim_ros PUBLIC include ${catkin_INCLUDE_DIRS})
+target_link_libraries(rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES})
+add_dependencies(rigid_body_sim_ros
+  ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
+
+add_executable(rigid_body_sim_node src/rigid_body_sim_node.cpp)
+target_link_libraries(rigid_body_sim_node rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES})
+add_dependencies(rigid_body_sim_node
+  ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
+
+install(TARGETS rigid_body_sim_core rigid_body_sim_ros rigid_body_sim_node
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(DIRECTORY include/${PROJECT_NAME}/
+  DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})
+install(DIRECTORY launch config
+  DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(PROGRAMS scripts/run.sh scripts/rviz_screenshot.sh
+  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -1,0 +1,47 @@
+// For the diagnostics: how far |L| and the rotational kinetic energy of each
+// torque-free body have drifted since a reference moment. Both are invariants
+// of the torque-free motion (uniform gravity acts at the COM and exerts no
+// torque), so their drift measures the integrator's error.
+#pragma once
+
+#include <cstddef>
+#include <optional>
+#include <vector>
+
+#include "rigid_body_sim/core/world.h"
+
+namespace rigid_body_sim {
+
+class ConservationMonitor {
+ public:
+  // Every body torque-free, referenced at the world's current state.
+  explicit ConservationMonitor(const core::World& world);
+
+  // Takes the current states as the new references; every body torque-free
+  // again (after a reset or when the held wrenches were cleared).
+  void RebaseAll(const core::World& world);
+  // Takes one body's current state as its reference (after it was set).
+  void Rebase(const core::World& world, std::size_t body);
+  // A wrench was held for the body: it no longer conserves anything.
+  void MarkLoaded(std::size_t body) { loaded_[body] = true; }
+
+  // Relative drifts (x − x₀) / x₀, absolute when x₀ is zero.
+  struct Drift {
+    double angular_momentum_norm = 0.0;
+    double rotational_energy = 0.0;
+  };
+  // Nothing for a body that had a wrench since its reference.
+  std::optional<Drift> Measure(const core::World& world, std::size_t body) const;
+
+ private:
+  struct Invariants {
+    double angular_momentum_norm = 0.0;
+    double rotational_energy = 0.0;
+  };
+  static Invariants Of(const core::World& world, std::size_t body);
+
+  std::vector<Invariants> references_;
+  std::vector<bool> loaded_;
+};
+
+}  // namespace rigid_body_sim

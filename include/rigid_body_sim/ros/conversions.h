@@ -1,0 +1,67 @@
+// Core state ↔ ROS messages, as free functions usable without a master.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include <rigid_body_sim/BodyState.h>
+#include <rigid_body_sim/BodyStateArray.h>
+#include <rigid_body_sim/ParticleWrench.h>
+#include <rigid_body_sim/ParticleWrenchArray.h>
+#include <rigid_body_sim/SetBodyState.h>
+#include <rigid_body_sim/Step.h>
+
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Transform.h>
+#include <geometry_msgs/Twist.h>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/wrench_table.h"
+
+namespace rigid_body_sim {
+
+// COM position and body-frame orientation, world.
+geometry_msgs::Pose ToPoseMsg(const core::BodyState& state);
+// The same pose as the transform world → body frame.
+geometry_msgs::Transform ToTransformMsg(const core::BodyState& state);
+// COM velocity and angular velocity, world axes.
+geometry_msgs::Twist ToTwistMsg(const core::BodyModel& model, const core::BodyState& state);
+BodyState ToBodyState(const core::BodyModel& model, const core::BodyState& state);
+
+// The TF frame of a body: tf_prefix + name, as written, without a leading '/'
+// (tf2 frame ids have none).
+std::string BodyFrameId(const std::string& tf_prefix, const std::string& body_name);
+
+// What a ParticleWrench message is checked against: the scene's bodies and
+// the frames that name world axes and each body's axes.
+struct WrenchFrames {
+  std::string world_frame;
+  std::string tf_prefix;
+  std::vector<std::string> body_names;         // scene order
+  std::vector<std::size_t> particle_counts;    // per body
+};
+
+// Why a ParticleWrench message (or array entry) was not held.
+enum class WrenchMsgRejection { kNone, kNonFinite, kUnknownBody, kParticleOutOfRange, kUnknownFrame };
+constexpr std::size_t kWrenchMsgRejectionCount = 5;
+// "non_finite", "unknown_body", "particle_out_of_range", "unknown_frame"
+// (the diagnostics key is "rejected_" + this).
+const char* ToString(WrenchMsgRejection rejection);
+
+struct ConvertedWrench {
+  core::ParticleWrench wrench;                                  // valid when accepted
+  WrenchMsgRejection rejection = WrenchMsgRejection::kNone;
+  std::string detail;                                     // one line for the warning
+  bool accepted() const { return rejection == WrenchMsgRejection::kNone; }
+};
+
+// A message's frame_id is "" or the world frame → world axes; the body's
+// name, with or without tf_prefix, → body axes. A leading '/' is ignored
+// (tf1 habit). A zero stamp starts at `next_step_time_s`, the simulation time
+// of the next step; otherwise at the stamp.
+ConvertedWrench FromParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
+                                      double next_step_time_s);
+
+}  // namespace rigid_body_sim

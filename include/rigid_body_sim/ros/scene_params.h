@@ -1,0 +1,55 @@
+// The node's private parameters (SPEC "Parameters") turned into a validated
+// scene: the settings of the node and the bodies of the world.
+#pragma once
+
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <ros/node_handle.h>
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/integrator.h"
+
+namespace rigid_body_sim {
+
+struct NodeSettings {
+  std::string world_frame = "world";
+  std::string tf_prefix;                // prepended as written to body names for TF
+  double rate_hz = 1000.0;              // integration rate, dt = 1 / rate
+  double publish_rate_hz = 100.0;       // output rate, <= rate
+  std::string integrator = core::kDefaultIntegrator;
+  Eigen::Vector3d gravity_mps2 = Eigen::Vector3d::Zero();
+  double wrench_timeout_s = 0.0;        // 0: a wrench is held until replaced
+  double real_time_factor = 1.0;        // 0: as fast as possible
+  bool publish_clock = false;
+  bool publish_tf = true;
+  double particle_marker_diameter_m = 0.04;  // ~particles sphere size (extension)
+};
+
+struct Scene {
+  NodeSettings settings;
+  std::vector<core::BodyModel> models;            // in scene order
+  std::vector<core::BodyState> initial_states;    // one per model
+};
+
+// An invalid scene or parameter; what() is one line naming the entry and key,
+// e.g. "bodies[2] (name 'rod'): particles[1].mass must be > 0, got -1".
+class SceneError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Reads every private parameter of `private_nh`, with SPEC's defaults.
+// Throws SceneError.
+Scene LoadScene(const ros::NodeHandle& private_nh);
+
+// The `bodies` list alone (a particle list or a generated shape per entry),
+// so that it can be checked without a master. Throws SceneError.
+void ParseBodies(const XmlRpc::XmlRpcValue& bodies, std::vector<core::BodyModel>* models,
+                 std::vector<core::BodyState>* initial_states);
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,45 @@
+// When to take the next fixed-size step: steps are due on a steady clock at
+// intervals of dt / real_time_factor, so simulation time tracks wall time
+// without drift; dt itself never changes.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+
+namespace rigid_body_sim {
+
+class StepPacer {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  // real_time_factor 0 runs unpaced: every call hands out a full batch.
+  // A late wake-up catches up at most max_catch_up_s of simulation time.
+  StepPacer(double dt_s, double real_time_factor, double max_catch_up_s);
+
+  // The next step is due at `now` (start, and resume after a pause).
+  void Restart(Clock::time_point now);
+
+  // How many steps to take now, counted as taken: 0 when the next is not due
+  // yet, several after a late wake-up (an overrun), at most the catch-up
+  // bound; beyond it the wall-clock debt is forgiven (a catch-up limit hit),
+  // so the simulation falls behind the wall clock instead of racing it.
+  std::uint64_t TakeDueSteps(Clock::time_point now);
+
+  // When the next step is due; unpaced: always (the earliest time point).
+  Clock::time_point next_due() const;
+  bool paced() const { return paced_; }
+  std::uint64_t max_batch() const { return max_batch_; }
+  std::uint64_t overruns() const { return overruns_; }
+  std::uint64_t catch_up_limit_hits() const { return catch_up_limit_hits_; }
+
+ private:
+  bool paced_;
+  Clock::duration period_{};        // wall time per step
+  std::uint64_t max_batch_;
+  Clock::time_point anchor_{};      // when step 0 since the anchor was due
+  std::uint64_t taken_since_anchor_ = 0;
+  std::uint64_t overruns_ = 0;
+  std::uint64_t catch_up_limit_hits_ = 0;
+};
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,12 @@
+#include "rigid_body_sim/core/integrators/casimir_splitting.h"
+
+#include "casimir_step.h"
+
+namespace rigid_body_sim::core {
+
+void CasimirSplittingIntegrator::Step(const BodyModel& model, const Load* load, double dt_s,
+                                      BodyState* state) const {
+  CasimirStrangStep(model, CasimirSplit(model), load, 0.0, dt_s, state);
+}
+
+}  // namespace rigid_body_sim::core

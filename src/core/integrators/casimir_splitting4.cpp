@@ -1,0 +1,51 @@
+#include "rigid_body_sim/core/integrators/casimir_splitting4.h"
+
+#include <cmath>
+
+#include "casimir_step.h"
+#include "rigid_body_sim/core/integrators/free_rotation.h"
+
+namespace rigid_body_sim::core {
+namespace {
+
+// Yoshida (1990): w1 + w0 + w1 = 1 and 2 w1³ + w0³ = 0.
+const double kOuterWeight = 1.0 / (2.0 - std::cbrt(2.0));
+const double kInnerWeight = 1.0 - 2.0 * kOuterWeight;
+
+// The triple jump without kicks: B(a/2) C(a) B((a+b)/2) C(b) B((b+a)/2) C(a)
+// B(a/2) with a = w1 h, b = w0 h, then the merged Casimir rotation over h.
+void FreeStep(const BodyModel& model, const CasimirSplit& split, double h, BodyState* state) {
+  const double outer = kOuterWeight * h;
+  const double inner = kInnerWeight * h;
+  state->position += h * model.inverse_mass() * state->linear_momentum;
+  const Eigen::Quaterniond& body_from_principal = model.principal_axes();
+  Eigen::Quaterniond principal = state->orientation * body_from_principal;
+  Eigen::Vector3d body_momentum = principal.conjugate() * state->angular_momentum;
+  AxisFlow(0, split.axis1, 0.5 * outer, &body_momentum, &principal);
+  AxisFlow(2, split.axis3, outer, &body_momentum, &principal);
+  AxisFlow(0, split.axis1, 0.5 * (outer + inner), &body_momentum, &principal);
+  AxisFlow(2, split.axis3, inner, &body_momentum, &principal);
+  AxisFlow(0, split.axis1, 0.5 * (inner + outer), &body_momentum, &principal);
+  AxisFlow(2, split.axis3, outer, &body_momentum, &principal);
+  AxisFlow(0, split.axis1, 0.5 * outer, &body_momentum, &principal);
+  principal = ExpMap(h * split.casimir * state->angular_momentum) * principal;
+  state->orientation = (principal * body_from_principal.conjugate()).normalized();
+}
+
+}  // namespace
+
+void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load, double dt_s,
+                                       BodyState* state) const {
+  const CasimirSplit split(model);
+  if (load == nullptr) {
+    FreeStep(model, split, dt_s, state);
+    return;
+  }
+  const double outer = kOuterWeight * dt_s;
+  const double inner = kInnerWeight * dt_s;
+  CasimirStrangStep(model, split, load, 0.0, outer, state);
+  CasimirStrangStep(model, split, load, outer, inner, state);
+  CasimirStrangStep(model, split, load, outer + inner, outer, state);
+}
+
+}  // namespace rigid_body_sim::core

@@ -1,0 +1,38 @@
+#include "casimir_step.h"
+
+#include "rigid_body_sim/core/integrators/free_rotation.h"
+
+namespace rigid_body_sim::core {
+namespace {
+
+void HalfKick(const Load& load, double t_s, double h, BodyState* state) {
+  const Wrench wrench = load.At(t_s, state->orientation.toRotationMatrix());
+  state->linear_momentum += 0.5 * h * wrench.force;
+  if (load.has_torque()) state->angular_momentum += 0.5 * h * wrench.torque;
+}
+
+}  // namespace
+
+CasimirSplit::CasimirSplit(const BodyModel& model) {
+  const Eigen::Vector3d& inverse = model.inverse_principal_moments();
+  casimir = inverse[1];
+  axis1 = inverse[0] - casimir;
+  axis3 = inverse[2] - casimir;
+}
+
+void CasimirStrangStep(const BodyModel& model, const CasimirSplit& split, const Load* load,
+                       double t_offset_s, double h, BodyState* state) {
+  if (load != nullptr) HalfKick(*load, t_offset_s, h, state);
+  state->position += h * model.inverse_mass() * state->linear_momentum;
+  const Eigen::Quaterniond& body_from_principal = model.principal_axes();
+  Eigen::Quaterniond principal = state->orientation * body_from_principal;
+  Eigen::Vector3d body_momentum = principal.conjugate() * state->angular_momentum;
+  AxisFlow(0, split.axis1, 0.5 * h, &body_momentum, &principal);
+  AxisFlow(2, split.axis3, h, &body_momentum, &principal);
+  AxisFlow(0, split.axis1, 0.5 * h, &body_momentum, &principal);
+  principal = ExpMap(h * split.casimir * state->angular_momentum) * principal;
+  state->orientation = (principal * body_from_principal.conjugate()).normalized();
+  if (load != nullptr) HalfKick(*load, t_offset_s + h, h, state);
+}
+
+}  // namespace rigid_body_sim::core

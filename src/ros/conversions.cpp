@@ -1,0 +1,132 @@
+#include "rigid_body_sim/ros/conversions.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <tf2_eigen/tf2_eigen.h>
+
+#include "rigid_body_sim/core/kinematics.h"
+
+namespace rigid_body_sim {
+namespace {
+
+// ros::Time holds whole nanoseconds, so a stamp copied from a published state
+// can round up past that state's time; this keeps such a wrench on that step.
+constexpr double kStampRounding_s = 1e-9;
+
+geometry_msgs::Vector3 ToVector3Msg(const Eigen::Vector3d& vector) {
+  geometry_msgs::Vector3 msg;
+  tf2::toMsg(vector, msg);
+  return msg;
+}
+
+Eigen::Vector3d FromVector3Msg(const geometry_msgs::Vector3& msg) {
+  return Eigen::Vector3d(msg.x, msg.y, msg.z);
+}
+
+std::string WithoutLeadingSlash(const std::string& frame) {
+  return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
+}
+
+}  // namespace
+
+std::string BodyFrameId(const std::string& tf_prefix, const std::string& body_name) {
+  return WithoutLeadingSlash(tf_prefix + body_name);
+}
+
+geometry_msgs::Pose ToPoseMsg(const core::BodyState& state) {
+  geometry_msgs::Pose msg;
+  msg.position = tf2::toMsg(state.position);
+  msg.orientation = tf2::toMsg(state.orientation);
+  return msg;
+}
+
+geometry_msgs::Transform ToTransformMsg(const core::BodyState& state) {
+  geometry_msgs::Transform msg;
+  msg.translation = ToVector3Msg(state.position);
+  msg.rotation = tf2::toMsg(state.orientation);
+  return msg;
+}
+
+geometry_msgs::Twist ToTwistMsg(const core::BodyModel& model, const core::BodyState& state) {
+  geometry_msgs::Twist msg;
+  msg.linear = ToVector3Msg(core::LinearVelocity(model, state));
+  msg.angular = ToVector3Msg(core::AngularVelocity(model, state));
+  return msg;
+}
+
+BodyState ToBodyState(const core::BodyModel& model, const core::BodyState& state) {
+  BodyState msg;
+  msg.name = model.name();
+  msg.pose = ToPoseMsg(state);
+  msg.twist = ToTwistMsg(model, state);
+  msg.linear_momentum = ToVector3Msg(state.linear_momentum);
+  msg.angular_momentum = ToVector3Msg(state.angular_momentum);
+  msg.kinetic_energy = core::KineticEnergy(model, state);
+  return msg;
+}
+
+const char* ToString(WrenchMsgRejection rejection) {
+  switch (rejection) {
+    case WrenchMsgRejection::kNone: return "accepted";
+    case WrenchMsgRejection::kNonFinite: return "non_finite";
+    case WrenchMsgRejection::kUnknownBody: return "unknown_body";
+    case WrenchMsgRejection::kParticleOutOfRange: return "particle_out_of_range";
+    case WrenchMsgRejection::kUnknownFrame: return "unknown_frame";
+  }
+  return "unknown";
+}
+
+ConvertedWrench FromParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
+                                      double next_step_time_s) {
+  ConvertedWrench result;
+  const auto reject = [&result](WrenchMsgRejection reason, std::string detail) {
+    result.rejection = reason;
+    result.detail = std::move(detail);
+    return result;
+  };
+
+  const auto body = std::find(frames.body_names.begin(), frames.body_names.end(), msg.body);
+  if (body == frames.body_names.end()) {
+    return reject(WrenchMsgRejection::kUnknownBody, "unknown body '" + msg.body + "'");
+  }
+  const std::size_t body_index = body - frames.body_names.begin();
+  if (msg.particle >= frames.particle_counts[body_index]) {
+    return reject(WrenchMsgRejection::kParticleOutOfRange,
+                  "particle " + std::to_string(msg.particle) + " out of range: body '" +
+                      msg.body + "' has " + std::to_string(frames.particle_counts[body_index]) +
+                      " particles");
+  }
+
+  const Eigen::Vector3d force = FromVector3Msg(msg.wrench.force);
+  const Eigen::Vector3d couple = FromVector3Msg(msg.wrench.torque);
+  if (!force.allFinite() || !couple.allFinite()) {
+    return reject(WrenchMsgRejection::kNonFinite,
+                  "NaN or infinite force or torque for body '" + msg.body + "' particle " +
+                      std::to_string(msg.particle));
+  }
+
+  const std::string frame = WithoutLeadingSlash(msg.header.frame_id);
+  core::WrenchAxes axes;
+  if (frame.empty() || frame == WithoutLeadingSlash(frames.world_frame)) {
+    axes = core::WrenchAxes::kWorld;
+  } else if (frame == msg.body || frame == BodyFrameId(frames.tf_prefix, msg.body)) {
+    axes = core::WrenchAxes::kBody;
+  } else {
+    return reject(WrenchMsgRejection::kUnknownFrame,
+                  "unknown frame_id '" + msg.header.frame_id + "' for body '" + msg.body +
+                      "' (use '', '" + frames.world_frame + "' or '" +
+                      BodyFrameId(frames.tf_prefix, msg.body) + "')");
+  }
+
+  result.wrench.body = body_index;
+  result.wrench.particle = msg.particle;
+  result.wrench.axes = axes;
+  result.wrench.force = force;
+  result.wrench.couple = couple;
+  result.wrench.start_s =
+      msg.header.stamp.isZero() ? next_step_time_s : msg.header.stamp.toSec() - kStampRounding_s;
+  return result;
+}
+
+}  // namespace rigid_body_sim

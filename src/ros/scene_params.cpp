@@ -1,0 +1,342 @@
+#include "rigid_body_sim/ros/scene_params.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <set>
+
+#include "rigid_body_sim/core/kinematics.h"
+#include "rigid_body_sim/core/shapes.h"
+
+namespace rigid_body_sim {
+namespace {
+
+using XmlRpc::XmlRpcValue;
+
+constexpr int kDefaultShapeResolution = 5;
+
+std::string FormatNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%g", value);
+  return text;
+}
+
+// A parameter value as the user wrote it, for "got ..." in error messages.
+std::string Describe(const XmlRpcValue& value) {
+  switch (value.getType()) {
+    case XmlRpcValue::TypeInt: return std::to_string(static_cast<int>(value));
+    case XmlRpcValue::TypeDouble: return FormatNumber(static_cast<double>(value));
+    case XmlRpcValue::TypeString: return "'" + static_cast<const std::string&>(value) + "'";
+    case XmlRpcValue::TypeBoolean: return static_cast<bool>(value) ? "true" : "false";
+    case XmlRpcValue::TypeArray: {
+      std::string text = "[";
+      for (int i = 0; i < value.size(); ++i) text += (i ? ", " : "") + Describe(value[i]);
+      return text + "]";
+    }
+    case XmlRpcValue::TypeStruct: return "a map";
+    default: return "nothing";
+  }
+}
+
+bool IsNumber(const XmlRpcValue& value) {
+  return value.getType() == XmlRpcValue::TypeInt || value.getType() == XmlRpcValue::TypeDouble;
+}
+
+double AsNumber(const XmlRpcValue& value) {
+  return value.getType() == XmlRpcValue::TypeInt ? static_cast<int>(value)
+                                                 : static_cast<double>(value);
+}
+
+double ReadFiniteNumber(const XmlRpcValue& value, const std::string& key) {
+  if (!IsNumber(value) || !std::isfinite(AsNumber(value))) {
+    throw SceneError(key + " must be a finite number, got " + Describe(value));
+  }
+  return AsNumber(value);
+}
+
+double ReadPositiveNumber(const XmlRpcValue& value, const std::string& key) {
+  const double number = ReadFiniteNumber(value, key);
+  if (number <= 0.0) throw SceneError(key + " must be > 0, got " + Describe(value));
+  return number;
+}
+
+template <int N>
+Eigen::Matrix<double, N, 1> ReadFiniteVector(const XmlRpcValue& value, const std::string& key) {
+  bool valid = value.getType() == XmlRpcValue::TypeArray && value.size() == N;
+  Eigen::Matrix<double, N, 1> vector;
+  for (int i = 0; valid && i < N; ++i) {
+    valid = IsNumber(value[i]) && std::isfinite(AsNumber(value[i]));
+    if (valid) vector[i] = AsNumber(value[i]);
+  }
+  if (!valid) {
+    throw SceneError(key + " must be " + std::to_string(N) + " finite numbers, got " +
+                     Describe(value));
+  }
+  return vector;
+}
+
+// A valid TF frame and ROS graph name (the body name is used in both).
+bool IsValidBodyName(const std::string& name) {
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+std::vector<core::Particle> ReadParticles(const XmlRpcValue& list) {
+  if (list.getType() != XmlRpcValue::TypeArray || list.size() == 0) {
+    throw SceneError("particles must be a non-empty list, got " + Describe(list));
+  }
+  std::vector<core::Particle> particles;
+  for (int i = 0; i < list.size(); ++i) {
+    const std::string key = "particles[" + std::to_string(i) + "]";
+    const XmlRpcValue& entry = list[i];
+    if (entry.getType() != XmlRpcValue::TypeStruct) {
+      throw SceneError(key + " must be a map {mass, position}, got " + Describe(entry));
+    }
+    for (const auto& member : entry) {
+      if (member.first != "mass" && member.first != "position") {
+        throw SceneError(key + " has unknown key '" + member.first + "' (known: mass, position)");
+      }
+    }
+    if (!entry.hasMember("mass")) throw SceneError(key + ".mass is missing");
+    if (!entry.hasMember("position")) throw SceneError(key + ".position is missing");
+    core::Particle particle;
+    particle.mass_kg = ReadPositiveNumber(entry["mass"], key + ".mass");
+    particle.position_m = ReadFiniteVector<3>(entry["position"], key + ".position");
+    particles.push_back(particle);
+  }
+  return particles;
+}
+
+int ReadResolution(const XmlRpcValue& body) {
+  if (!body.hasMember("resolution")) return kDefaultShapeResolution;
+  const XmlRpcValue& value = body["resolution"];
+  if (value.getType() != XmlRpcValue::TypeInt || static_cast<int>(value) < 1) {
+    throw SceneError("resolution must be an integer >= 1, got " + Describe(value));
+  }
+  return static_cast<int>(value);
+}
+
+double ReadRequiredPositive(const XmlRpcValue& body, const std::string& key) {
+  if (!body.hasMember(key)) throw SceneError(key + " is missing");
+  return ReadPositiveNumber(body[key], key);
+}
+
+// The keys each kind of entry accepts besides the common ones.
+std::set<std::string> ShapeKeys(const std::string& shape) {
+  if (shape == "box") return {"shape", "mass", "size", "resolution"};
+  if (shape == "sphere") return {"shape", "mass", "radius", "resolution"};
+  if (shape == "cylinder") return {"shape", "mass", "radius", "length", "resolution"};
+  throw SceneError("shape must be one of box, sphere, cylinder, got '" + shape + "'");
+}
+
+std::vector<core::Particle> ReadShape(const XmlRpcValue& body, const std::string& shape) {
+  const double mass = ReadRequiredPositive(body, "mass");
+  const int resolution = ReadResolution(body);
+  if (shape == "box") {
+    if (!body.hasMember("size")) throw SceneError("size is missing");
+    const Eigen::Vector3d size = ReadFiniteVector<3>(body["size"], "size");
+    if ((size.array() <= 0.0).any()) {
+      throw SceneError("size must be 3 numbers > 0, got " + Describe(body["size"]));
+    }
+    return core::MakeBox(mass, size, resolution);
+  }
+  const double radius = ReadRequiredPositive(body, "radius");
+  if (shape == "sphere") return core::MakeSphere(mass, radius, resolution);
+  return core::MakeCylinder(mass, radius, ReadRequiredPositive(body, "length"), resolution);
+}
+
+void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) {
+  static const std::set<std::string> kCommonKeys = {
+      "name", "position", "orientation", "linear_velocity", "angular_velocity"};
+  for (const auto& member : body) {
+    if (kCommonKeys.count(member.first) || kind_keys.count(member.first)) continue;
+    std::string known;
+    for (const auto& key : kCommonKeys) known += key + ", ";
+    for (const auto& key : kind_keys) known += key + ", ";
+    throw SceneError("unknown key '" + member.first + "' (known here: " +
+                     known.substr(0, known.size() - 2) + ")");
+  }
+}
+
+Eigen::Vector3d ReadOptionalVector3(const XmlRpcValue& body, const std::string& key) {
+  return body.hasMember(key) ? ReadFiniteVector<3>(body[key], key) : Eigen::Vector3d::Zero();
+}
+
+Eigen::Quaterniond ReadOrientation(const XmlRpcValue& body) {
+  if (!body.hasMember("orientation")) return Eigen::Quaterniond::Identity();
+  const Eigen::Vector4d xyzw = ReadFiniteVector<4>(body["orientation"], "orientation");
+  // Hand-written quaternions are rounded; any clearly non-zero one is normalised.
+  if (xyzw.norm() < 1e-6) {
+    throw SceneError("orientation must be a non-zero quaternion [x, y, z, w], got " +
+                     Describe(body["orientation"]));
+  }
+  return Eigen::Quaterniond(xyzw[3], xyzw[0], xyzw[1], xyzw[2]).normalized();
+}
+
+// One entry of `bodies`; errors name the key, the caller adds the entry.
+void ParseBody(const XmlRpcValue& body, std::vector<core::BodyModel>* models,
+               std::vector<core::BodyState>* initial_states) {
+  const std::string& name = body["name"];
+  const bool has_particles = body.hasMember("particles");
+  const bool has_shape = body.hasMember("shape");
+  if (has_particles == has_shape) {
+    throw SceneError("needs exactly one of particles (a list) or shape (box, sphere, cylinder)");
+  }
+  std::vector<core::Particle> particles;
+  if (has_particles) {
+    CheckKeys(body, {"particles"});
+    particles = ReadParticles(body["particles"]);
+  } else {
+    const XmlRpcValue& shape = body["shape"];
+    if (shape.getType() != XmlRpcValue::TypeString) {
+      throw SceneError("shape must be one of box, sphere, cylinder, got " + Describe(shape));
+    }
+    CheckKeys(body, ShapeKeys(shape));
+    particles = ReadShape(body, shape);
+  }
+  const Eigen::Vector3d position = ReadOptionalVector3(body, "position");
+  const Eigen::Quaterniond orientation = ReadOrientation(body);
+  const Eigen::Vector3d linear_velocity = ReadOptionalVector3(body, "linear_velocity");
+  const Eigen::Vector3d angular_velocity = ReadOptionalVector3(body, "angular_velocity");
+
+  models->emplace_back(name, std::move(particles));
+  initial_states->push_back(core::StateFromTwist(models->back(), position, orientation,
+                                           linear_velocity, angular_velocity));
+}
+
+// Private parameters, each with its SPEC default; errors name "~key".
+class ParamReader {
+ public:
+  explicit ParamReader(const ros::NodeHandle& nh) : nh_(nh) {}
+
+  bool Get(const std::string& key, XmlRpcValue* value) const { return nh_.getParam(key, *value); }
+
+  double Number(const std::string& key, double fallback) const {
+    XmlRpcValue value;
+    return Get(key, &value) ? ReadFiniteNumber(value, "~" + key) : fallback;
+  }
+
+  std::string String(const std::string& key, const std::string& fallback) const {
+    XmlRpcValue value;
+    if (!Get(key, &value)) return fallback;
+    if (value.getType() != XmlRpcValue::TypeString) {
+      throw SceneError("~" + key + " must be a string, got " + Describe(value));
+    }
+    return value;
+  }
+
+  bool Bool(const std::string& key, bool fallback) const {
+    XmlRpcValue value;
+    if (!Get(key, &value)) return fallback;
+    if (value.getType() != XmlRpcValue::TypeBoolean) {
+      throw SceneError("~" + key + " must be true or false, got " + Describe(value));
+    }
+    return value;
+  }
+
+  Eigen::Vector3d Vector3(const std::string& key, const Eigen::Vector3d& fallback) const {
+    XmlRpcValue value;
+    return Get(key, &value) ? ReadFiniteVector<3>(value, "~" + key) : fallback;
+  }
+
+ private:
+  const ros::NodeHandle& nh_;
+};
+
+NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
+  const ParamReader params(private_nh);
+  NodeSettings settings;
+  settings.world_frame = params.String("world_frame", settings.world_frame);
+  if (settings.world_frame.empty()) throw SceneError("~world_frame must not be empty");
+  settings.tf_prefix = params.String("tf_prefix", settings.tf_prefix);
+  settings.rate_hz = params.Number("rate", settings.rate_hz);
+  if (settings.rate_hz <= 0.0) {
+    throw SceneError("~rate must be > 0, got " + FormatNumber(settings.rate_hz));
+  }
+  settings.publish_rate_hz = params.Number("publish_rate", settings.publish_rate_hz);
+  if (settings.publish_rate_hz <= 0.0) {
+    throw SceneError("~publish_rate must be > 0, got " + FormatNumber(settings.publish_rate_hz));
+  }
+  if (settings.publish_rate_hz > settings.rate_hz) {
+    throw SceneError("~publish_rate must not exceed ~rate (" + FormatNumber(settings.rate_hz) +
+                     "), got " + FormatNumber(settings.publish_rate_hz));
+  }
+  settings.integrator = params.String("integrator", settings.integrator);
+  const std::vector<std::string>& known = core::IntegratorNames();
+  if (std::find(known.begin(), known.end(), settings.integrator) == known.end()) {
+    std::string names;
+    for (const auto& known_name : known) names += (names.empty() ? "" : ", ") + known_name;
+    throw SceneError("~integrator: unknown '" + settings.integrator + "' (known: " + names + ")");
+  }
+  settings.gravity_mps2 = params.Vector3("gravity", settings.gravity_mps2);
+  settings.wrench_timeout_s = params.Number("wrench_timeout", settings.wrench_timeout_s);
+  if (settings.wrench_timeout_s < 0.0) {
+    throw SceneError("~wrench_timeout must be >= 0, got " + FormatNumber(settings.wrench_timeout_s));
+  }
+  settings.real_time_factor = params.Number("real_time_factor", settings.real_time_factor);
+  if (settings.real_time_factor < 0.0) {
+    throw SceneError("~real_time_factor must be >= 0, got " +
+                     FormatNumber(settings.real_time_factor));
+  }
+  settings.publish_clock = params.Bool("publish_clock", settings.publish_clock);
+  settings.publish_tf = params.Bool("publish_tf", settings.publish_tf);
+  settings.particle_marker_diameter_m =
+      params.Number("particle_marker_diameter", settings.particle_marker_diameter_m);
+  return settings;
+}
+
+}  // namespace
+
+void ParseBodies(const XmlRpcValue& bodies, std::vector<core::BodyModel>* models,
+                 std::vector<core::BodyState>* initial_states) {
+  if (bodies.getType() != XmlRpcValue::TypeArray || bodies.size() == 0) {
+    throw SceneError("~bodies must be a non-empty list of bodies, got " + Describe(bodies));
+  }
+  std::vector<std::string> names;
+  for (int i = 0; i < bodies.size(); ++i) {
+    std::string entry = "bodies[" + std::to_string(i) + "]";
+    const XmlRpcValue& body = bodies[i];
+    if (body.getType() != XmlRpcValue::TypeStruct) {
+      throw SceneError(entry + ": must be a map with a name and particles or a shape, got " +
+                       Describe(body));
+    }
+    if (!body.hasMember("name")) throw SceneError(entry + ": name is missing");
+    const XmlRpcValue& name = body["name"];
+    if (name.getType() != XmlRpcValue::TypeString ||
+        static_cast<const std::string&>(name).empty()) {
+      throw SceneError(entry + ": name must be a non-empty string, got " + Describe(name));
+    }
+    entry += " (name '" + static_cast<const std::string&>(name) + "')";
+    if (!IsValidBodyName(name)) {
+      throw SceneError(entry + ": name must be a letter then letters, digits or '_' "
+                               "(it names a TF frame and topics)");
+    }
+    const auto previous = std::find(names.begin(), names.end(), static_cast<const std::string&>(name));
+    if (previous != names.end()) {
+      throw SceneError(entry + ": name duplicates bodies[" +
+                       std::to_string(previous - names.begin()) + "]");
+    }
+    names.push_back(name);
+    try {
+      ParseBody(body, models, initial_states);
+    } catch (const std::exception& error) {  // SceneError, or the core's std::invalid_argument
+      throw SceneError(entry + ": " + error.what());
+    }
+  }
+}
+
+Scene LoadScene(const ros::NodeHandle& private_nh) {
+  Scene scene;
+  scene.settings = ReadSettings(private_nh);
+  XmlRpcValue bodies;
+  if (!private_nh.getParam("bodies", bodies)) {
+    throw SceneError("~bodies is missing (load a scene, e.g. config/default_scene.yaml)");
+  }
+  ParseBodies(bodies, &scene.models, &scene.initial_states);
+  return scene;
+}
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,425 @@
+#include "rigid_body_sim/ros/simulation_node.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/TransformStamped.h>
+#include <geometry_msgs/TwistStamped.h>
+#include <rosgraph_msgs/Clock.h>
+#include <ros/callback_queue.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "rigid_body_sim/core/kinematics.h"
+
+namespace rigid_body_sim {
+namespace {
+
+// A late wake-up catches up at most this much simulation time.
+constexpr double kMaxCatchUp_s = 0.1;
+// Status line and diagnostics period, wall time.
+constexpr std::chrono::seconds kReportPeriod(1);
+// How long a paused loop waits for callbacks before checking again.
+constexpr std::chrono::milliseconds kPausedWait(50);
+// Queues sized for bursts of per-particle messages between two steps.
+constexpr std::uint32_t kWrenchQueueSize = 1000;
+constexpr std::uint32_t kWrenchArrayQueueSize = 100;
+constexpr std::uint32_t kStateQueueSize = 10;
+
+core::WorldOptions MakeWorldOptions(const NodeSettings& settings) {
+  core::WorldOptions options;
+  options.integrator = settings.integrator;
+  options.dt_s = 1.0 / settings.rate_hz;
+  options.gravity = settings.gravity_mps2;
+  options.wrench_timeout_s = settings.wrench_timeout_s;
+  return options;
+}
+
+WrenchFrames MakeWrenchFrames(const NodeSettings& settings, const core::World& world) {
+  WrenchFrames frames;
+  frames.world_frame = settings.world_frame;
+  frames.tf_prefix = settings.tf_prefix;
+  for (const core::BodyModel& model : world.models()) {
+    frames.body_names.push_back(model.name());
+    frames.particle_counts.push_back(model.particle_count());
+  }
+  return frames;
+}
+
+std::vector<std::string> MakeChildFrames(const NodeSettings& settings, const core::World& world) {
+  std::vector<std::string> frames;
+  for (const core::BodyModel& model : world.models()) {
+    frames.push_back(BodyFrameId(settings.tf_prefix, model.name()));
+  }
+  return frames;
+}
+
+std::uint64_t PublishEverySteps(const NodeSettings& settings) {
+  return std::max<std::uint64_t>(1, std::llround(settings.rate_hz / settings.publish_rate_hz));
+}
+
+// A few distinct colours for the bodies' particles in rviz.
+std_msgs::ColorRGBA BodyColor(std::size_t body) {
+  static const float kPalette[][3] = {{0.90f, 0.30f, 0.25f}, {0.25f, 0.60f, 0.90f},
+                                      {0.35f, 0.80f, 0.35f}, {0.95f, 0.75f, 0.20f},
+                                      {0.70f, 0.40f, 0.85f}, {0.30f, 0.85f, 0.80f}};
+  const float* rgb = kPalette[body % (sizeof(kPalette) / sizeof(kPalette[0]))];
+  std_msgs::ColorRGBA color;
+  color.r = rgb[0];
+  color.g = rgb[1];
+  color.b = rgb[2];
+  color.a = 1.0f;
+  return color;
+}
+
+double Microseconds(std::chrono::steady_clock::duration duration) {
+  return std::chrono::duration<double, std::micro>(duration).count();
+}
+
+bool AllFinite(const geometry_msgs::Pose& pose, const geometry_msgs::Twist& twist) {
+  const double values[] = {pose.position.x,    pose.position.y,    pose.position.z,
+                           pose.orientation.x, pose.orientation.y, pose.orientation.z,
+                           pose.orientation.w, twist.linear.x,     twist.linear.y,
+                           twist.linear.z,     twist.angular.x,    twist.angular.y,
+                           twist.angular.z};
+  return std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); });
+}
+
+}  // namespace
+
+SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
+    : settings_(scene.settings),
+      world_(std::move(scene.models), std::move(scene.initial_states), MakeWorldOptions(settings_)),
+      frames_(MakeWrenchFrames(settings_, world_)),
+      child_frames_(MakeChildFrames(settings_, world_)),
+      publish_every_steps_(PublishEverySteps(settings_)),
+      pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
+      conservation_(world_),
+      private_nh_(private_nh),
+      diagnostics_(ros::NodeHandle(), private_nh) {
+  for (const core::BodyModel& model : world_.models()) {
+    pose_publishers_.push_back(
+        private_nh_.advertise<geometry_msgs::PoseStamped>(model.name() + "/pose", kStateQueueSize));
+    twist_publishers_.push_back(private_nh_.advertise<geometry_msgs::TwistStamped>(
+        model.name() + "/twist", kStateQueueSize));
+  }
+  bodies_publisher_ = private_nh_.advertise<BodyStateArray>("bodies", kStateQueueSize);
+  particles_publisher_ =
+      private_nh_.advertise<visualization_msgs::MarkerArray>("particles", kStateQueueSize);
+  if (settings_.publish_clock) {
+    clock_publisher_ = ros::NodeHandle().advertise<rosgraph_msgs::Clock>("/clock", kStateQueueSize);
+  }
+
+  const ros::TransportHints low_latency = ros::TransportHints().tcpNoDelay();
+  subscribers_.push_back(private_nh_.subscribe("particle_wrench", kWrenchQueueSize,
+                                               &SimulationNode::OnParticleWrench, this, low_latency));
+  subscribers_.push_back(private_nh_.subscribe("particle_wrenches", kWrenchArrayQueueSize,
+                                               &SimulationNode::OnParticleWrenches, this, low_latency));
+
+  services_.push_back(private_nh_.advertiseService("reset", &SimulationNode::OnReset, this));
+  services_.push_back(private_nh_.advertiseService("set_paused", &SimulationNode::OnSetPaused, this));
+  services_.push_back(private_nh_.advertiseService("step", &SimulationNode::OnStep, this));
+  services_.push_back(
+      private_nh_.advertiseService("set_body_state", &SimulationNode::OnSetBodyState, this));
+  services_.push_back(
+      private_nh_.advertiseService("clear_wrenches", &SimulationNode::OnClearWrenches, this));
+
+  diagnostics_.setHardwareID("none");
+  diagnostics_.add("simulation", this, &SimulationNode::FillDiagnostics);
+
+  if (std::llround(settings_.rate_hz / settings_.publish_rate_hz) * settings_.publish_rate_hz !=
+      settings_.rate_hz) {
+    ROS_WARN("~publish_rate %g does not divide ~rate %g: publishing every %llu steps (%g Hz)",
+             settings_.publish_rate_hz, settings_.rate_hz,
+             static_cast<unsigned long long>(publish_every_steps_),
+             settings_.rate_hz / static_cast<double>(publish_every_steps_));
+  }
+}
+
+void SimulationNode::Run() {
+  world_.SetStartTime(ros::Time::now().toSec());
+  Clock::time_point next_report = Clock::now() + kReportPeriod;
+  pacer_.Restart(Clock::now());
+  window_ = ReportWindow{Clock::now(), world_.time()};
+  ROS_INFO("%s: %zu bodies, integrator %s, dt %g s, publishing every %llu steps, "
+           "real-time factor %g, start time %.3f s",
+           ros::this_node::getName().c_str(), world_.size(), world_.integrator().name(),
+           world_.options().dt_s, static_cast<unsigned long long>(publish_every_steps_),
+           settings_.real_time_factor, world_.time());
+
+  ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
+  while (ros::ok()) {
+    Clock::time_point now = Clock::now();
+    if (!paused_) {
+      for (std::uint64_t due = pacer_.TakeDueSteps(now); due > 0; --due) {
+        StepOnce();
+        if (AtPublishBoundary()) Publish();
+      }
+    }
+    now = Clock::now();
+    if (now >= next_report) {
+      Report(now);
+      next_report += kReportPeriod;
+      if (next_report <= now) next_report = now + kReportPeriod;
+    }
+    const Clock::time_point wake = paused_           ? now + kPausedWait
+                                   : pacer_.paced() ? std::min(pacer_.next_due(), next_report)
+                                                    : now;
+    const double wait_s = std::max(0.0, std::chrono::duration<double>(wake - now).count());
+    callbacks.callAvailable(ros::WallDuration(wait_s));
+  }
+}
+
+void SimulationNode::StepOnce() {
+  const Clock::time_point start = Clock::now();
+  world_.Step();
+  const Clock::duration elapsed = Clock::now() - start;
+  ++window_.steps;
+  window_.step_time_total += elapsed;
+  window_.step_time_max = std::max(window_.step_time_max, elapsed);
+}
+
+bool SimulationNode::AtPublishBoundary() const {
+  return world_.step_count() % publish_every_steps_ == 0;
+}
+
+void SimulationNode::Publish() {
+  const ros::Time stamp(world_.time());
+  if (settings_.publish_clock) {
+    rosgraph_msgs::Clock clock;
+    clock.clock = stamp;
+    clock_publisher_.publish(clock);
+  }
+  if (settings_.publish_tf) {
+    std::vector<geometry_msgs::TransformStamped> transforms(world_.size());
+    for (std::size_t body = 0; body < world_.size(); ++body) {
+      transforms[body].header.stamp = stamp;
+      transforms[body].header.frame_id = settings_.world_frame;
+      transforms[body].child_frame_id = child_frames_[body];
+      transforms[body].transform = ToTransformMsg(world_.state(body));
+    }
+    tf_broadcaster_.sendTransform(transforms);  // one TFMessage for all bodies
+  }
+  for (std::size_t body = 0; body < world_.size(); ++body) {
+    if (pose_publishers_[body].getNumSubscribers() > 0) {
+      geometry_msgs::PoseStamped pose;
+      pose.header.stamp = stamp;
+      pose.header.frame_id = settings_.world_frame;
+      pose.pose = ToPoseMsg(world_.state(body));
+      pose_publishers_[body].publish(pose);
+    }
+    if (twist_publishers_[body].getNumSubscribers() > 0) {
+      geometry_msgs::TwistStamped twist;
+      twist.header.stamp = stamp;
+      twist.header.frame_id = settings_.world_frame;
+      twist.twist = ToTwistMsg(world_.model(body), world_.state(body));
+      twist_publishers_[body].publish(twist);
+    }
+  }
+  if (bodies_publisher_.getNumSubscribers() > 0) {
+    BodyStateArray bodies;
+    bodies.header.stamp = stamp;
+    bodies.header.frame_id = settings_.world_frame;
+    for (std::size_t body = 0; body < world_.size(); ++body) {
+      bodies.bodies.push_back(ToBodyState(world_.model(body), world_.state(body)));
+    }
+    bodies_publisher_.publish(bodies);
+  }
+  if (particles_publisher_.getNumSubscribers() > 0) PublishParticles(stamp);
+}
+
+void SimulationNode::PublishParticles(const ros::Time& stamp) {
+  visualization_msgs::MarkerArray markers;
+  markers.markers.resize(world_.size());
+  for (std::size_t body = 0; body < world_.size(); ++body) {
+    visualization_msgs::Marker& marker = markers.markers[body];
+    marker.header.stamp = stamp;
+    marker.header.frame_id = settings_.world_frame;
+    marker.ns = "particles";
+    marker.id = static_cast<int>(body);
+    marker.type = visualization_msgs::Marker::SPHERE_LIST;
+    marker.action = visualization_msgs::Marker::ADD;
+    marker.pose.orientation.w = 1.0;
+    marker.scale.x = marker.scale.y = marker.scale.z = settings_.particle_marker_diameter_m;
+    marker.color = BodyColor(body);
+    core::ParticlePositions(world_.model(body), world_.state(body), &particle_positions_);
+    marker.points.resize(particle_positions_.size());
+    for (std::size_t i = 0; i < particle_positions_.size(); ++i) {
+      marker.points[i].x = particle_positions_[i].x();
+      marker.points[i].y = particle_positions_[i].y();
+      marker.points[i].z = particle_positions_[i].z();
+    }
+  }
+  particles_publisher_.publish(markers);
+}
+
+void SimulationNode::Report(Clock::time_point now) {
+  const double wall_s = std::chrono::duration<double>(now - window_.start).count();
+  achieved_real_time_factor_ = wall_s > 0.0 ? (world_.time() - window_.start_sim_time_s) / wall_s : 0.0;
+  step_time_mean_us_ =
+      window_.steps > 0 ? Microseconds(window_.step_time_total) / static_cast<double>(window_.steps) : 0.0;
+  step_time_max_us_ = Microseconds(window_.step_time_max);
+  overruns_in_window_ = pacer_.overruns() - overruns_reported_;
+  overruns_reported_ = pacer_.overruns();
+  window_ = ReportWindow{now, world_.time()};
+
+  ROS_INFO("sim time %.3f s (%.3f s since start), real-time factor %.3f%s, %zu bodies, "
+           "step %.1f us (max %.1f us), %llu overruns",
+           world_.time(), world_.time() - world_.options().start_time_s, achieved_real_time_factor_,
+           paused_ ? " (paused)" : "", world_.size(),
+           step_time_mean_us_, step_time_max_us_,
+           static_cast<unsigned long long>(overruns_in_window_));
+  diagnostics_.force_update();
+}
+
+void SimulationNode::FillDiagnostics(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  // Single late wake-ups are normal on a busy machine; falling behind is not.
+  const bool slow = !paused_ && pacer_.paced() &&
+                    achieved_real_time_factor_ < 0.9 * settings_.real_time_factor;
+  if (paused_) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "paused");
+  } else if (slow) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                   "slower than the requested real-time factor");
+  } else {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
+  }
+  status.addf("sim_time_s", "%.6f", world_.time());
+  status.add("steps", world_.step_count());
+  status.add("integrator", world_.integrator().name());
+  status.add("dt_s", world_.options().dt_s);
+  status.add("paused", paused_);
+  status.add("step_time_mean_us", step_time_mean_us_);
+  status.add("step_time_max_us", step_time_max_us_);
+  status.add("overruns", pacer_.overruns());
+  status.add("catch_up_limit_hits", pacer_.catch_up_limit_hits());
+  status.add("real_time_factor_target", settings_.real_time_factor);
+  status.add("real_time_factor_achieved", achieved_real_time_factor_);
+  status.add("held_wrenches", world_.wrenches().size());
+  status.add("rejected_messages", rejected_messages_);
+  for (std::size_t reason = 1; reason < kWrenchMsgRejectionCount; ++reason) {
+    status.add(std::string("rejected_") + ToString(static_cast<WrenchMsgRejection>(reason)),
+               rejected_by_reason_[reason]);
+  }
+  status.add("dropped_couples", world_.dropped_couple_count());
+  for (std::size_t body = 0; body < world_.size(); ++body) {
+    const std::optional<ConservationMonitor::Drift> drift = conservation_.Measure(world_, body);
+    if (!drift) continue;
+    const std::string& name = world_.model(body).name();
+    status.add(name + "/angular_momentum_drift", drift->angular_momentum_norm);
+    status.add(name + "/rotational_energy_drift", drift->rotational_energy);
+  }
+}
+
+void SimulationNode::HoldWrench(const ParticleWrench& msg) {
+  // The next step starts at the current simulation time.
+  const ConvertedWrench converted = FromParticleWrench(msg, frames_, world_.time());
+  if (!converted.accepted()) {
+    Reject(converted.rejection, converted.detail);
+    return;
+  }
+  switch (world_.wrenches().Hold(converted.wrench)) {
+    case core::WrenchRejection::kAccepted:
+      conservation_.MarkLoaded(converted.wrench.body);
+      return;
+    case core::WrenchRejection::kNonFinite:
+      return Reject(WrenchMsgRejection::kNonFinite, "non-finite wrench");
+    case core::WrenchRejection::kUnknownBody:
+      return Reject(WrenchMsgRejection::kUnknownBody, "unknown body '" + msg.body + "'");
+    case core::WrenchRejection::kParticleOutOfRange:
+      return Reject(WrenchMsgRejection::kParticleOutOfRange, "particle index out of range");
+  }
+}
+
+void SimulationNode::Reject(WrenchMsgRejection reason, const std::string& detail) {
+  ++rejected_messages_;
+  ++rejected_by_reason_[static_cast<std::size_t>(reason)];
+  ROS_WARN_THROTTLE(1.0, "rejected a particle wrench (%s): %s (%llu rejected so far)",
+                    ToString(reason), detail.c_str(),
+                    static_cast<unsigned long long>(rejected_messages_));
+}
+
+void SimulationNode::OnParticleWrench(const ParticleWrench::ConstPtr& msg) { HoldWrench(*msg); }
+
+void SimulationNode::OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg) {
+  // In order, each on its own; all of them act from the same step since no
+  // step runs while a callback does.
+  for (const ParticleWrench& wrench : msg->wrenches) HoldWrench(wrench);
+}
+
+bool SimulationNode::OnReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  world_.Reset();
+  conservation_.RebaseAll(world_);
+  ROS_INFO("reset: every body back to its initial state at sim time %.3f s", world_.time());
+  return true;
+}
+
+bool SimulationNode::OnSetPaused(std_srvs::SetBool::Request& request,
+                                 std_srvs::SetBool::Response& response) {
+  if (paused_ && !request.data) pacer_.Restart(Clock::now());  // no catch-up for the pause
+  response.message = paused_ == request.data ? (paused_ ? "already paused" : "already running")
+                                             : (request.data ? "paused" : "resumed");
+  paused_ = request.data;
+  response.success = true;
+  return true;
+}
+
+bool SimulationNode::OnStep(Step::Request& request, Step::Response& response) {
+  response.sim_time = world_.time();
+  if (!paused_) {
+    response.success = false;
+    response.message = "~step works only while paused (call ~set_paused true first)";
+    return true;
+  }
+  if (request.steps == 0) {
+    response.success = false;
+    response.message = "steps must be >= 1";
+    return true;
+  }
+  for (std::uint32_t i = 0; i < request.steps; ++i) StepOnce();
+  Publish();
+  response.success = true;
+  response.sim_time = world_.time();
+  response.message = "stepped " + std::to_string(request.steps) + " steps";
+  return true;
+}
+
+bool SimulationNode::OnSetBodyState(SetBodyState::Request& request,
+                                    SetBodyState::Response& response) {
+  response.success = false;
+  const std::optional<std::size_t> body = world_.FindBody(request.body);
+  if (!body) {
+    response.message = "unknown body '" + request.body + "'";
+    return true;
+  }
+  if (!AllFinite(request.pose, request.twist)) {
+    response.message = "pose and twist must be finite";
+    return true;
+  }
+  const geometry_msgs::Quaternion& q = request.pose.orientation;
+  const Eigen::Quaterniond orientation(q.w, q.x, q.y, q.z);
+  if (orientation.norm() < 1e-6) {
+    response.message = "pose.orientation must be a non-zero quaternion (identity is w: 1)";
+    return true;
+  }
+  const geometry_msgs::Twist& twist = request.twist;
+  world_.SetBodyState(
+      *body, core::StateFromTwist(world_.model(*body),
+                            Eigen::Vector3d(request.pose.position.x, request.pose.position.y,
+                                            request.pose.position.z),
+                            orientation.normalized(),
+                            Eigen::Vector3d(twist.linear.x, twist.linear.y, twist.linear.z),
+                            Eigen::Vector3d(twist.angular.x, twist.angular.y, twist.angular.z)));
+  conservation_.Rebase(world_, *body);
+  response.success = true;
+  response.message = "set '" + request.body + "'";
+  return true;
+}
+
+bool SimulationNode::OnClearWrenches(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
+  world_.wrenches().Clear();
+  conservation_.RebaseAll(world_);
+  return true;
+}
+
+}  // namespace rigid_body_sim
