@@ -21,13 +21,13 @@ void FreeStep(const BodyModel& model, const CasimirSplit& split, double h, BodyS
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
   Eigen::Quaterniond principal = state->orientation * body_from_principal;
   Eigen::Vector3d body_momentum = principal.conjugate() * state->angular_momentum;
-  AxisFlow(0, split.axis1, 0.5 * outer, &body_momentum, &principal);
-  AxisFlow(2, split.axis3, outer, &body_momentum, &principal);
-  AxisFlow(0, split.axis1, 0.5 * (outer + inner), &body_momentum, &principal);
-  AxisFlow(2, split.axis3, inner, &body_momentum, &principal);
-  AxisFlow(0, split.axis1, 0.5 * (inner + outer), &body_momentum, &principal);
-  AxisFlow(2, split.axis3, outer, &body_momentum, &principal);
-  AxisFlow(0, split.axis1, 0.5 * outer, &body_momentum, &principal);
+  AxisFlow<0>(split.axis1, 0.5 * outer, &body_momentum, &principal);
+  AxisFlow<2>(split.axis3, outer, &body_momentum, &principal);
+  AxisFlow<0>(split.axis1, 0.5 * (outer + inner), &body_momentum, &principal);
+  AxisFlow<2>(split.axis3, inner, &body_momentum, &principal);
+  AxisFlow<0>(split.axis1, 0.5 * (inner + outer), &body_momentum, &principal);
+  AxisFlow<2>(split.axis3, outer, &body_momentum, &principal);
+  AxisFlow<0>(split.axis1, 0.5 * outer, &body_momentum, &principal);
   principal = ExpMap(h * split.casimir * state->angular_momentum) * principal;
   state->orientation = (principal * body_from_principal.conjugate()).normalized();
 }

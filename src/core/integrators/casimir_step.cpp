@@ -27,9 +27,9 @@ void CasimirStrangStep(const BodyModel& model, const CasimirSplit& split, const 
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
   Eigen::Quaterniond principal = state->orientation * body_from_principal;
   Eigen::Vector3d body_momentum = principal.conjugate() * state->angular_momentum;
-  AxisFlow(0, split.axis1, 0.5 * h, &body_momentum, &principal);
-  AxisFlow(2, split.axis3, h, &body_momentum, &principal);
-  AxisFlow(0, split.axis1, 0.5 * h, &body_momentum, &principal);
+  AxisFlow<0>(split.axis1, 0.5 * h, &body_momentum, &principal);
+  AxisFlow<2>(split.axis3, h, &body_momentum, &principal);
+  AxisFlow<0>(split.axis1, 0.5 * h, &body_momentum, &principal);
   principal = ExpMap(h * split.casimir * state->angular_momentum) * principal;
   state->orientation = (principal * body_from_principal.conjugate()).normalized();
   if (load != nullptr) HalfKick(*load, t_offset_s + h, h, state);

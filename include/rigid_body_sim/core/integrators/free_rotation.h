@@ -1,5 +1,8 @@
-// Rotation building blocks shared by the integrators.
+// Rotation building blocks shared by the integrators. SinCos and AxisFlow are
+// inline: they run up to 13 times per body-step in the splitting schemes.
 #pragma once
+
+#include <cmath>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -11,14 +14,44 @@ namespace rigid_body_sim::core {
 // sin x and cos x: a Taylor series where |x| <= 1/16, whose truncation error
 // (< 1e-20 relative) is far below round-off, std::sin/std::cos elsewhere.
 // Step angles are mostly tiny, and this is several times cheaper there.
-void SinCos(double x, double* sin_x, double* cos_x);
+inline void SinCos(double x, double* sin_x, double* cos_x) {
+  if (std::abs(x) > 0.0625) {
+    *sin_x = std::sin(x);
+    *cos_x = std::cos(x);
+    return;
+  }
+  const double x2 = x * x;
+  *sin_x = x + x * x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880))));
+  *cos_x = 1.0 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 +
+                                                                         x2 * (-1.0 / 3628800)))));
+}
 
 // The flow of H_k = ½ coefficient · Π_k² for time h, in the principal frame:
 // the body turns by θ = h · coefficient · Π_k about principal axis k, so
-// q_WP ← q_WP ⊗ exp(θ e_k) and Π ← R_k(θ)ᵀ Π (Π_k and the world L unchanged).
-// With coefficient 1/λ_k it is the exact rotation of the lone axis-k term.
-void AxisFlow(int k, double coefficient, double h, Eigen::Vector3d* body_momentum,
-              Eigen::Quaterniond* principal_orientation);
+// q_WP ← q_WP ⊗ (cos θ/2, sin θ/2 e_k) and Π ← R_k(θ)ᵀ Π (Π_k and the world L
+// unchanged). With coefficient 1/λ_k it is the exact rotation of the lone
+// axis-k term. For (i, j, k) cyclic, q ⊗ (c, s e_k) touches w, q_i, q_j, q_k
+// as written out below (12 flops instead of a full product's 28).
+template <int k>
+inline void AxisFlow(double coefficient, double h, Eigen::Vector3d* body_momentum,
+                     Eigen::Quaterniond* principal_orientation) {
+  constexpr int i = (k + 1) % 3;
+  constexpr int j = (k + 2) % 3;
+  double s, c;
+  SinCos(0.5 * h * coefficient * (*body_momentum)[k], &s, &c);
+  const double cos_angle = 1.0 - 2.0 * s * s;
+  const double sin_angle = 2.0 * s * c;
+  Eigen::Vector3d& m = *body_momentum;
+  const double mi = m[i];
+  m[i] = cos_angle * mi + sin_angle * m[j];
+  m[j] = cos_angle * m[j] - sin_angle * mi;
+  Eigen::Quaterniond& q = *principal_orientation;
+  const double w = q.w(), qi = q.vec()[i], qj = q.vec()[j], qk = q.vec()[k];
+  q.w() = c * w - s * qk;
+  q.vec()[i] = c * qi + s * qj;
+  q.vec()[j] = c * qj - s * qi;
+  q.vec()[k] = c * qk + s * w;
+}
 
 // exp of a rotation vector θ (axis θ/|θ|, angle |θ|) as a unit quaternion.
 Eigen::Quaterniond ExpMap(const Eigen::Vector3d& rotation_vector);
