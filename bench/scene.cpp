@@ -65,6 +65,7 @@ std::vector<Scene> WorkPrecisionScenes() {
       TorqueFree("dzhanibekov_headline", {0.1, 2.0, 0.1}, 20.0),
       TorqueFree("dzhanibekov_flips", {0.01, 5.0, 0.01}, 60.0),
   };
+  scenes.back().count_flips = true;
   // Spinning at 1 rad/s about the principal axis z (λ = 3) under 1.5 N m about z.
   Scene torque = TorqueFree("principal_torque", {0.0, 0.0, 1.0}, 10.0);
   torque.constant_couple = {0.0, 0.0, 1.5};

@@ -38,6 +38,8 @@ struct Scene {
   // True when the final state has a closed form (torque-free or constant
   // principal torque); otherwise the reference is a fine-step integration.
   bool closed_form = true;
+  // Report the sign changes of the body-frame L₂ (the Dzhanibekov flips).
+  bool count_flips = false;
 };
 
 // The force at every loaded particle at time t for a body whose orientation

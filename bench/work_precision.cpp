@@ -99,33 +99,67 @@ double TimeOurs(const Scene& scene, const BodyModel& model, const Integrator& in
   });
 }
 
+// The state every method is compared with, at t_end = steps · dt (T rounded
+// to whole steps of each dt).
 struct Reference {
-  BodyState state;
-  double own_error_rad = 0.0;  // estimate of the reference's orientation error
-  std::vector<double> flips;
+  std::vector<BodyState> at_end;  // one per dt
+  double own_error_rad = 0.0;     // estimate of the reference's orientation error
+  std::vector<double> flips;      // body-frame L₂ sign changes over T, closed form
 };
 
-// Closed form where there is one; otherwise rk4 at dt_fine and 2 dt_fine, whose
-// difference bounds the finer one's error by Richardson: e ≈ |Δ|/(2⁴ − 1).
-Reference MakeReference(const Scene& scene, const BodyModel& model, double dt_fine) {
+// The forced scene has no closed form: rk4 at 5 µs, whose step divides every
+// t_end of the dt set (multiples of 1e-5 s). Its own error is estimated by
+// Richardson from the same run at 10 µs: e ≈ |Δ|/(2⁴ − 1).
+constexpr double kFineDt = 5e-6;
+
+std::vector<BodyState> FineRun(const Scene& scene, const BodyModel& model, double dt_fine,
+                               const std::vector<double>& t_ends) {
+  const auto rk4 = MakeIntegrator("rk4");
+  SceneLoad load(scene, model);
+  BodyState state = scene.initial;
+  std::vector<BodyState> captured(t_ends.size());
+  const long last = std::lround(*std::max_element(t_ends.begin(), t_ends.end()) / dt_fine);
+  for (long n = 0; n <= last; ++n) {
+    for (std::size_t i = 0; i < t_ends.size(); ++i) {
+      if (std::lround(t_ends[i] / dt_fine) == n) captured[i] = state;
+    }
+    load.set_step_start(n * dt_fine);
+    rk4->Step(model, &load, dt_fine, &state);
+  }
+  return captured;
+}
+
+Reference MakeReference(const Scene& scene, const BodyModel& model, const std::vector<double>& dts) {
   Reference reference;
-  if (scene.closed_form && scene.constant_couple.isZero()) {
-    reference.state = ExactFreeBodyState(model, scene.initial, scene.duration_s);
+  std::vector<double> t_ends;
+  for (double dt : dts) t_ends.push_back(StepCount(scene, dt) * dt);
+  if (!scene.closed_form) {
+    reference.at_end = FineRun(scene, model, kFineDt, t_ends);
+    const std::vector<BodyState> coarse = FineRun(scene, model, 2 * kFineDt, t_ends);
+    for (std::size_t i = 0; i < t_ends.size(); ++i) {
+      reference.own_error_rad = std::max(
+          reference.own_error_rad,
+          AngleBetween(coarse[i].orientation, reference.at_end[i].orientation) / 15.0);
+    }
+    return reference;
+  }
+  for (double t_end : t_ends) {
+    if (scene.constant_couple.isZero()) {
+      reference.at_end.push_back(ExactFreeBodyState(model, scene.initial, t_end));
+    } else {
+      // Spinning about the principal axis z (λ = 3) with the couple along it.
+      const double omega0 = scene.initial.angular_momentum.z() / 3.0;
+      reference.at_end.push_back(UnderPrincipalTorque(scene.initial, Eigen::Vector3d::UnitZ(), 3.0,
+                                                      omega0, scene.constant_couple.z(), t_end));
+    }
+  }
+  if (scene.count_flips) {
     FlipCounter flips;
     const double dt = 1e-3;
     for (long n = 0; n <= StepCount(scene, dt); ++n) {
       flips.Observe(ExactFreeBodyState(model, scene.initial, n * dt), n * dt, dt);
     }
     reference.flips = flips.times;
-  } else if (scene.closed_form) {
-    const double omega0 = scene.initial.angular_momentum.z() / 3.0;
-    reference.state = UnderPrincipalTorque(scene.initial, Eigen::Vector3d::UnitZ(), 3.0, omega0,
-                                           scene.constant_couple.z(), scene.duration_s);
-  } else {
-    const auto rk4 = MakeIntegrator("rk4");
-    reference.state = RunOurs(scene, model, *rk4, dt_fine, nullptr);
-    const BodyState coarse = RunOurs(scene, model, *rk4, 2 * dt_fine, nullptr);
-    reference.own_error_rad = AngleBetween(coarse.orientation, reference.state.orientation) / 15.0;
   }
   return reference;
 }
@@ -174,17 +208,19 @@ int main(int argc, char** argv) {
          "momentum_rel_error,ns_per_body_step,flips,first_flip_error_s\n";
   for (const Scene& scene : WorkPrecisionScenes()) {
     const BodyModel model(scene.name, scene.particles);
-    const Reference reference = MakeReference(scene, model, dts.back() / 64);
+    const Reference reference = MakeReference(scene, model, dts);
     std::cerr << scene.name << ": reference error estimate " << reference.own_error_rad << " rad\n";
     const bool track_flips = !reference.flips.empty();
-    for (double dt : dts) {
+    for (std::size_t d = 0; d < dts.size(); ++d) {
+      const double dt = dts[d];
+      const BodyState& expected = reference.at_end[d];
       const int timed_steps = static_cast<int>(std::min<long>(100, StepCount(scene, dt)));
       for (const std::string& name : IntegratorNames()) {
         const auto integrator = MakeIntegrator(name);
         FlipCounter flips;
         const BodyState final_state = RunOurs(scene, model, *integrator, dt, track_flips ? &flips : nullptr);
         const double ns = TimeOurs(scene, model, *integrator, dt, timed_steps);
-        WriteRow(csv, scene, "rigid_body_sim", name, dt, Compare(model, final_state, reference.state),
+        WriteRow(csv, scene, "rigid_body_sim", name, dt, Compare(model, final_state, expected),
                  ns, flips.times, reference);
       }
       for (const std::unique_ptr<Peer>& peer : peers) {
@@ -201,7 +237,7 @@ int main(int argc, char** argv) {
         const double ns = TimePerBodyStep(timed_steps, [&](int) { peer->Step(); });
         const std::string full = peer->name();
         const std::string engine = full.substr(0, full.find('_'));
-        WriteRow(csv, scene, engine, full, dt, Compare(model, final_state, reference.state), ns,
+        WriteRow(csv, scene, engine, full, dt, Compare(model, final_state, expected), ns,
                  flips.times, reference);
       }
     }

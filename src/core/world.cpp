@@ -73,6 +73,8 @@ void World::Step() {
       load = &loads_[i];
     } else if (has_gravity_) {
       load = &gravity_loads_[i];
+    } else if (state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
+      continue;  // at rest and unloaded: nothing can move it, so skip the scheme
     }
     integrator_->Step(model, load, options_.dt_s, &state);
     if (!model.is_full_rank()) {

@@ -6,6 +6,7 @@
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/reference/constant_load.h"
+#include "rigid_body_sim/core/reference/free_body.h"
 #include "test_bodies.h"
 
 namespace rigid_body_sim::core {
@@ -118,6 +119,26 @@ TEST_P(EveryIntegrator, DegenerateBodiesStayFiniteAndExact) {
   EXPECT_TRUE(particle.position.allFinite());
   EXPECT_TRUE(particle.angular_momentum.isZero(0.0));
   EXPECT_LT(test::AngleBetween(particle.orientation, Eigen::Quaterniond::Identity()), 1e-15);
+}
+
+TEST(CasimirSplitting, SymmetricTopsAndSpheresAreExactAtAnyDt) {
+  // λ = (1, 1, 2): the axis-1 flow vanishes, the rest commute; 0.25 s steps.
+  const BodyModel top = test::DiagonalBody({1.0, 1.0, 2.0});
+  const BodyModel sphere = test::DiagonalBody({1.5, 1.5, 1.5});
+  for (const BodyModel* body : {&top, &sphere}) {
+    BodyState state;
+    state.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized()));
+    state.angular_momentum = {0.7, -1.1, 2.3};
+    const BodyState initial = state;
+    for (const char* name : {"casimir_splitting", "casimir_splitting4"}) {
+      state = initial;
+      const auto integrator = MakeIntegrator(name);
+      for (int n = 0; n < 40; ++n) integrator->Step(*body, nullptr, 0.25, &state);
+      // Round-off of 40 steps of O(1) rotations.
+      EXPECT_LT(test::AngleBetween(state.orientation, ExactFreeBodyState(*body, initial, 10.0).orientation), 1e-13)
+          << name << " on " << (body == &top ? "top" : "sphere");
+    }
+  }
 }
 
 TEST(IntegratorFactory, UnknownNameIsNamed) {

@@ -14,6 +14,8 @@ const double kInnerWeight = 1.0 - 2.0 * kOuterWeight;
 
 // The triple jump without kicks: B(a/2) C(a) B((a+b)/2) C(b) B((b+a)/2) C(a)
 // B(a/2) with a = w1 h, b = w0 h, then the merged Casimir rotation over h.
+// When B or C vanishes (λ1 = λ2 or λ2 = λ3) the flows commute and the
+// composition collapses to one exact flow each.
 void FreeStep(const BodyModel& model, const CasimirSplit& split, double h, BodyState* state) {
   const double outer = kOuterWeight * h;
   const double inner = kInnerWeight * h;
@@ -21,13 +23,19 @@ void FreeStep(const BodyModel& model, const CasimirSplit& split, double h, BodyS
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
   Eigen::Quaterniond principal = state->orientation * body_from_principal;
   Eigen::Vector3d body_momentum = principal.conjugate() * state->angular_momentum;
-  AxisFlow<0>(split.axis1, 0.5 * outer, &body_momentum, &principal);
-  AxisFlow<2>(split.axis3, outer, &body_momentum, &principal);
-  AxisFlow<0>(split.axis1, 0.5 * (outer + inner), &body_momentum, &principal);
-  AxisFlow<2>(split.axis3, inner, &body_momentum, &principal);
-  AxisFlow<0>(split.axis1, 0.5 * (inner + outer), &body_momentum, &principal);
-  AxisFlow<2>(split.axis3, outer, &body_momentum, &principal);
-  AxisFlow<0>(split.axis1, 0.5 * outer, &body_momentum, &principal);
+  if (split.axis1 == 0.0 || split.axis3 == 0.0) {
+    // A symmetric top or a sphere: the remaining flows commute, one each is exact.
+    AxisFlow<0>(split.axis1, h, &body_momentum, &principal);
+    AxisFlow<2>(split.axis3, h, &body_momentum, &principal);
+  } else {
+    AxisFlow<0>(split.axis1, 0.5 * outer, &body_momentum, &principal);
+    AxisFlow<2>(split.axis3, outer, &body_momentum, &principal);
+    AxisFlow<0>(split.axis1, 0.5 * (outer + inner), &body_momentum, &principal);
+    AxisFlow<2>(split.axis3, inner, &body_momentum, &principal);
+    AxisFlow<0>(split.axis1, 0.5 * (inner + outer), &body_momentum, &principal);
+    AxisFlow<2>(split.axis3, outer, &body_momentum, &principal);
+    AxisFlow<0>(split.axis1, 0.5 * outer, &body_momentum, &principal);
+  }
   principal = ExpMap(h * split.casimir * state->angular_momentum) * principal;
   state->orientation = (principal * body_from_principal.conjugate()).normalized();
 }

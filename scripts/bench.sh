@@ -1,0 +1,30 @@
+#!/bin/bash
+# The one bench command: installs what the benchmarks need (Google Benchmark,
+# matplotlib and the peer engines MuJoCo, Bullet and ODE from Debian), builds
+# with -DRBS_BUILD_BENCH=ON and rewrites bench/results/ (CSVs and plots).
+# Pass --quick for a two-dt smoke run that writes to /tmp instead.
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ws="${RBS_WS:-$repo/build_ws}"
+quick=""
+repetitions=5
+results="$repo/bench/results"
+if [ "${1:-}" = "--quick" ]; then
+  quick="--quick"
+  repetitions=1
+  results="$(mktemp -d)"
+fi
+bash "$repo/scripts/install_bench_deps.sh"
+bash "$repo/scripts/build.sh" -DRBS_BUILD_BENCH=ON -j2 work_precision throughput_bench stability_stress
+bin="$ws/devel/lib/rigid_body_sim"
+mkdir -p "$results"
+cd "$repo"
+echo "== work-precision (ours and peers) =="
+"$bin/work_precision" "$results/work_precision.csv" $quick
+/usr/bin/python3 bench/plot_work_precision.py "$results/work_precision.csv" "$results/work_precision.png"
+echo "== throughput (Google Benchmark, one core) =="
+"$bin/throughput_bench" --benchmark_repetitions=$repetitions --benchmark_report_aggregates_only=true \
+  --benchmark_out="$results/throughput.json" --benchmark_out_format=json
+echo "== stability stress =="
+"$bin/stability_stress" "$results/stress.csv"
+echo "results in $results"
