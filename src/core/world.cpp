@@ -32,7 +32,8 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
       wrenches_(ParticleCounts(models_)),
       loads_(models_.size()),
       gravity_loads_(models_.size()),
-      loaded_(models_.size(), 0) {
+      loaded_(models_.size(), 0),
+      faults_(models_.size(), BodyFault::kNone) {
   if (!(options_.dt_s > 0.0)) throw std::invalid_argument("dt must be > 0");
   if (states_.size() != models_.size()) {
     throw std::invalid_argument("one initial state per body is required");
@@ -61,6 +62,7 @@ void World::Step() {
   wrenches_.Reduce(time(), options_.wrench_timeout_s, kTimeToleranceInSteps * options_.dt_s,
                    models_, &loads_, &loaded_);
   for (std::size_t i = 0; i < models_.size(); ++i) {
+    if (faults_[i] != BodyFault::kNone) continue;
     const BodyModel& model = models_[i];
     BodyState& state = states_[i];
     const Load* load = nullptr;
@@ -76,11 +78,18 @@ void World::Step() {
     } else if (state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
       continue;  // at rest and unloaded: nothing can move it, so skip the scheme
     }
+    const BodyState before = state;
     integrator_->Step(model, load, options_.dt_s, &state);
     if (!model.is_full_rank()) {
       // Keep L in the range of I, so that the published L equals I ω.
       const Eigen::Matrix3d a = state.orientation.toRotationMatrix();
       state.angular_momentum = a * (model.range_projector() * (a.transpose() * state.angular_momentum));
+    }
+    const BodyFault fault = CheckState(model, state, options_.dt_s);
+    if (fault != BodyFault::kNone) {
+      state = before;
+      faults_[i] = fault;
+      ++frozen_count_;
     }
   }
   ++steps_;
@@ -89,8 +98,16 @@ void World::Step() {
 void World::Reset() {
   states_ = initial_states_;
   wrenches_.Clear();
+  faults_.assign(faults_.size(), BodyFault::kNone);
+  frozen_count_ = 0;
 }
 
-void World::SetBodyState(std::size_t body, const BodyState& state) { states_.at(body) = state; }
+void World::SetBodyState(std::size_t body, const BodyState& state) {
+  states_.at(body) = state;
+  if (faults_[body] != BodyFault::kNone) {
+    faults_[body] = BodyFault::kNone;
+    --frozen_count_;
+  }
+}
 
 }  // namespace rigid_body_sim::core

@@ -124,6 +124,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
   services_.push_back(
       private_nh_.advertiseService("clear_wrenches", &SimulationNode::OnClearWrenches, this));
 
+  reported_faults_.assign(world_.size(), core::BodyFault::kNone);
   diagnostics_.setHardwareID("none");
   diagnostics_.add("simulation", this, &SimulationNode::FillDiagnostics);
 
@@ -172,11 +173,24 @@ void SimulationNode::Run() {
 
 void SimulationNode::StepOnce() {
   const Clock::time_point start = Clock::now();
+  const std::size_t frozen_before = world_.frozen_count();
   world_.Step();
+  if (world_.frozen_count() > frozen_before) ReportNewFaults();
   const Clock::duration elapsed = Clock::now() - start;
   ++window_.steps;
   window_.step_time_total += elapsed;
   window_.step_time_max = std::max(window_.step_time_max, elapsed);
+}
+
+void SimulationNode::ReportNewFaults() {
+  for (std::size_t body = 0; body < world_.size(); ++body) {
+    const core::BodyFault fault = world_.fault(body);
+    if (fault == core::BodyFault::kNone || reported_faults_[body] == fault) continue;
+    reported_faults_[body] = fault;
+    ROS_ERROR_THROTTLE(1.0, "body '%s' frozen at its last finite state (%s) at t = %.6f s; "
+                       "~reset or ~set_body_state brings it back",
+                       world_.model(body).name().c_str(), core::ToString(fault), world_.time());
+  }
 }
 
 bool SimulationNode::AtPublishBoundary() const {
@@ -276,7 +290,12 @@ void SimulationNode::FillDiagnostics(diagnostic_updater::DiagnosticStatusWrapper
   // Single late wake-ups are normal on a busy machine; falling behind is not.
   const bool slow = !paused_ && pacer_.paced() &&
                     achieved_real_time_factor_ < 0.9 * settings_.real_time_factor;
-  if (paused_) {
+  if (world_.frozen_count() > 0) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR,
+                   std::to_string(world_.frozen_count()) +
+                       " body(ies) frozen at their last finite state; ~reset or "
+                       "~set_body_state brings them back");
+  } else if (paused_) {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "paused");
   } else if (slow) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
@@ -302,6 +321,11 @@ void SimulationNode::FillDiagnostics(diagnostic_updater::DiagnosticStatusWrapper
                rejected_by_reason_[reason]);
   }
   status.add("dropped_couples", world_.dropped_couple_count());
+  status.add("frozen_bodies", world_.frozen_count());
+  for (std::size_t body = 0; body < world_.size(); ++body) {
+    if (world_.fault(body) == core::BodyFault::kNone) continue;
+    status.add(world_.model(body).name() + "/frozen", core::ToString(world_.fault(body)));
+  }
   for (std::size_t body = 0; body < world_.size(); ++body) {
     const std::optional<ConservationMonitor::Drift> drift = conservation_.Measure(world_, body);
     if (!drift) continue;
@@ -349,6 +373,7 @@ void SimulationNode::OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg
 
 bool SimulationNode::OnReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_.Reset();
+  reported_faults_.assign(world_.size(), core::BodyFault::kNone);
   conservation_.RebaseAll(world_);
   ROS_INFO("reset: every body back to its initial state at sim time %.3f s", world_.time());
   return true;
@@ -411,6 +436,7 @@ bool SimulationNode::OnSetBodyState(SetBodyState::Request& request,
                             Eigen::Vector3d(twist.linear.x, twist.linear.y, twist.linear.z),
                             Eigen::Vector3d(twist.angular.x, twist.angular.y, twist.angular.z)));
   conservation_.Rebase(world_, *body);
+  reported_faults_[*body] = core::BodyFault::kNone;
   response.success = true;
   response.message = "set '" + request.body + "'";
   return true;

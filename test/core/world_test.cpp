@@ -123,3 +123,60 @@ TEST(World, BadOptionsAreNamed) {
 
 }  // namespace
 }  // namespace rigid_body_sim::core
+
+namespace rigid_body_sim::core {
+namespace {
+
+TEST(World, AHugeForceFreezesOnlyThatBodyAtItsLastGoodState) {
+  World world = MakeWorld(WorldOptions{});
+  for (int n = 0; n < 10; ++n) world.Step();
+  ParticleWrench absurd;
+  absurd.body = 3;  // the box
+  absurd.force = {1e300, 0.0, 0.0};
+  ASSERT_EQ(world.wrenches().Hold(absurd), WrenchRejection::kAccepted);  // finite: allowed in
+  const BodyState last_good = world.state(3);
+  const BodyState rod_before = world.state(1);
+  world.Step();
+  // 1e300 N at a corner overflows the rotation angle: the state would hold NaN.
+  EXPECT_EQ(world.fault(3), BodyFault::kNonFinite);
+  EXPECT_EQ(world.frozen_count(), 1u);
+  EXPECT_EQ(world.state(3).linear_momentum, last_good.linear_momentum);
+  for (int n = 0; n < 10; ++n) world.Step();
+  EXPECT_EQ(world.state(3).position, last_good.position);
+  EXPECT_NE(world.state(1).orientation.coeffs(), rod_before.orientation.coeffs());  // others go on
+  // 1e12 N for 1 ms on the 2 kg particle: 5e8 m/s, finite but past c.
+  ParticleWrench fast;
+  fast.body = 2;
+  fast.force = {1e12, 0.0, 0.0};
+  world.wrenches().Hold(fast);
+  world.Step();
+  EXPECT_EQ(world.fault(2), BodyFault::kFasterThanLight);
+  EXPECT_EQ(world.frozen_count(), 2u);
+  world.Reset();
+  EXPECT_EQ(world.fault(3), BodyFault::kNone);
+  EXPECT_EQ(world.frozen_count(), 0u);
+}
+
+TEST(World, ASpinTooFastForTheStepFreezesTheBody) {
+  WorldOptions options;
+  options.dt_s = 1e-3;
+  World world = MakeWorld(options);
+  BodyState spinning = world.state(0);  // Ī = diag(1, 2, 3)
+  spinning.angular_momentum = {0.0, 0.0, 3.0 * 3000.0};  // ω = 3000 rad/s: ω dt = 3 < π
+  world.SetBodyState(0, spinning);
+  world.Step();
+  EXPECT_EQ(world.fault(0), BodyFault::kNone);
+  ParticleWrench spin_up;
+  spin_up.couple = {0.0, 0.0, 3.0 * 200.0 / 1e-3};  // +200 rad/s in one step: ω dt > π
+  world.wrenches().Hold(spin_up);
+  world.Step();
+  EXPECT_EQ(world.fault(0), BodyFault::kSpinAliased);
+  world.wrenches().Clear();
+  world.SetBodyState(0, spinning);
+  EXPECT_EQ(world.fault(0), BodyFault::kNone);
+  world.Step();
+  EXPECT_EQ(world.fault(0), BodyFault::kNone);
+}
+
+}  // namespace
+}  // namespace rigid_body_sim::core

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
@@ -49,11 +50,19 @@ class World {
   void SetStartTime(double start_time_s) { options_.start_time_s = start_time_s; }
 
   // Advances every body from t_n to t_(n+1) with the wrenches active at t_n.
+  // A body whose state would break a CheckState bound keeps its last good
+  // state and is frozen from then on; the others go on.
   void Step();
 
-  // Every body back to its initial state, wrenches cleared; time goes on.
+  // Every body back to its initial state, wrenches cleared, faults cleared;
+  // time goes on.
   void Reset();
+  // Also clears the body's fault.
   void SetBodyState(std::size_t body, const BodyState& state);
+
+  // Why `body` is frozen (kNone while it moves).
+  BodyFault fault(std::size_t body) const { return faults_[body]; }
+  std::size_t frozen_count() const { return frozen_count_; }
 
   WrenchTable& wrenches() { return wrenches_; }
   const WrenchTable& wrenches() const { return wrenches_; }
@@ -72,6 +81,8 @@ class World {
   std::vector<HeldLoads> loads_;          // this step's wrenches, bodies with loaded_ set
   std::vector<HeldLoads> gravity_loads_;  // M g alone, for bodies without wrenches
   std::vector<char> loaded_;
+  std::vector<BodyFault> faults_;
+  std::size_t frozen_count_ = 0;
   bool has_gravity_ = false;
   std::uint64_t steps_ = 0;
   std::uint64_t dropped_couples_ = 0;

@@ -55,6 +55,8 @@ class SimulationNode {
   };
 
   void StepOnce();
+  // Logs each body the world froze since the last call, once per fault.
+  void ReportNewFaults();
   bool AtPublishBoundary() const;
   void Publish();
   void PublishParticles(const ros::Time& stamp);
@@ -102,6 +104,7 @@ class SimulationNode {
   std::uint64_t overruns_reported_ = 0;
   std::uint64_t overruns_in_window_ = 0;
   std::vector<Eigen::Vector3d> particle_positions_;  // scratch for ~particles
+  std::vector<core::BodyFault> reported_faults_;     // last fault logged per body
 };
 
 }  // namespace rigid_body_sim

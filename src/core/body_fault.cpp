@@ -1,0 +1,43 @@
+#include "rigid_body_sim/core/body_fault.h"
+
+#include <cmath>
+
+#include "rigid_body_sim/core/kinematics.h"
+
+namespace rigid_body_sim::core {
+namespace {
+
+constexpr double kSpeedOfLight_mps = 299792458.0;
+
+}  // namespace
+
+const char* ToString(BodyFault fault) {
+  switch (fault) {
+    case BodyFault::kNone: return "none";
+    case BodyFault::kNonFinite: return "non_finite_state";
+    case BodyFault::kFasterThanLight: return "faster_than_light";
+    case BodyFault::kSpinAliased: return "spin_aliased";
+  }
+  return "unknown";
+}
+
+BodyFault CheckState(const BodyModel& model, const BodyState& state, double dt_s) {
+  // A NaN or an infinity anywhere makes the sum non-finite (so does an
+  // overflow of huge finite terms, which is past every bound below anyway).
+  const double sum = state.position.sum() + state.orientation.coeffs().sum() +
+                     state.linear_momentum.sum() + state.angular_momentum.sum();
+  if (!std::isfinite(sum)) return BodyFault::kNonFinite;
+  const double speed_limit = kSpeedOfLight_mps * model.mass();
+  if (state.linear_momentum.squaredNorm() > speed_limit * speed_limit) {
+    return BodyFault::kFasterThanLight;
+  }
+  // |ω| <= |L| / λ_min: only a body that may spin that fast pays for ω itself.
+  const double inverse_moment_max = model.inverse_principal_moments().maxCoeff();
+  if (state.angular_momentum.norm() * inverse_moment_max * dt_s >= M_PI &&
+      AngularVelocity(model, state).norm() * dt_s >= M_PI) {
+    return BodyFault::kSpinAliased;
+  }
+  return BodyFault::kNone;
+}
+
+}  // namespace rigid_body_sim::core
