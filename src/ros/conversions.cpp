@@ -10,10 +10,6 @@
 namespace rigid_body_sim {
 namespace {
 
-// ros::Time holds whole nanoseconds, so a stamp copied from a published state
-// can round up past that state's time; this keeps such a wrench on that step.
-constexpr double kStampRounding_s = 1e-9;
-
 geometry_msgs::Vector3 ToVector3Msg(const Eigen::Vector3d& vector) {
   geometry_msgs::Vector3 msg;
   tf2::toMsg(vector, msg);
@@ -73,12 +69,13 @@ const char* ToString(WrenchMsgRejection rejection) {
     case WrenchMsgRejection::kUnknownBody: return "unknown_body";
     case WrenchMsgRejection::kParticleOutOfRange: return "particle_out_of_range";
     case WrenchMsgRejection::kUnknownFrame: return "unknown_frame";
+    case WrenchMsgRejection::kTooManyEntries: return "too_many_entries";
   }
   return "unknown";
 }
 
 ConvertedWrench FromParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
-                                      double next_step_time_s) {
+                                   const ros::Time& start_stamp, double next_step_time_s) {
   ConvertedWrench result;
   const auto reject = [&result](WrenchMsgRejection reason, std::string detail) {
     result.rejection = reason;
@@ -86,11 +83,11 @@ ConvertedWrench FromParticleWrench(const ParticleWrench& msg, const WrenchFrames
     return result;
   };
 
-  const auto body = std::find(frames.body_names.begin(), frames.body_names.end(), msg.body);
-  if (body == frames.body_names.end()) {
+  const auto body = frames.body_index.find(msg.body);
+  if (body == frames.body_index.end()) {
     return reject(WrenchMsgRejection::kUnknownBody, "unknown body '" + msg.body + "'");
   }
-  const std::size_t body_index = body - frames.body_names.begin();
+  const std::size_t body_index = body->second;
   if (msg.particle >= frames.particle_counts[body_index]) {
     return reject(WrenchMsgRejection::kParticleOutOfRange,
                   "particle " + std::to_string(msg.particle) + " out of range: body '" +
@@ -124,8 +121,10 @@ ConvertedWrench FromParticleWrench(const ParticleWrench& msg, const WrenchFrames
   result.wrench.axes = axes;
   result.wrench.force = force;
   result.wrench.couple = couple;
-  result.wrench.start_s =
-      msg.header.stamp.isZero() ? next_step_time_s : msg.header.stamp.toSec() - kStampRounding_s;
+  // A stamp copied from a published state may differ from its t_n by the
+  // nanosecond rounding; the world counts times within 1e-3 dt as equal.
+  result.wrench.start_s = msg.header.stamp.isZero() ? next_step_time_s
+                                                    : (msg.header.stamp - start_stamp).toSec();
   return result;
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
+#include <unordered_map>
 
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
@@ -15,6 +16,12 @@ namespace {
 using XmlRpc::XmlRpcValue;
 
 constexpr int kDefaultShapeResolution = 5;
+// Bounds that keep a mistyped or hostile scene from exhausting memory at start
+// (the scene is held in RAM, once per body and per particle).
+constexpr int kMaxBodies = 100000;
+constexpr int kMaxParticlesPerBody = 100000;
+constexpr int kMaxShapeResolution = 40;  // 64,000 cells
+constexpr std::size_t kMaxNameLength = 128;
 
 std::string FormatNumber(double value) {
   char text[32];
@@ -88,6 +95,10 @@ std::vector<core::Particle> ReadParticles(const XmlRpcValue& list) {
   if (list.getType() != XmlRpcValue::TypeArray || list.size() == 0) {
     throw SceneError("particles must be a non-empty list, got " + Describe(list));
   }
+  if (list.size() > kMaxParticlesPerBody) {
+    throw SceneError("particles has " + std::to_string(list.size()) + " entries, at most " +
+                     std::to_string(kMaxParticlesPerBody) + " are allowed");
+  }
   std::vector<core::Particle> particles;
   for (int i = 0; i < list.size(); ++i) {
     const std::string key = "particles[" + std::to_string(i) + "]";
@@ -113,8 +124,10 @@ std::vector<core::Particle> ReadParticles(const XmlRpcValue& list) {
 int ReadResolution(const XmlRpcValue& body) {
   if (!body.hasMember("resolution")) return kDefaultShapeResolution;
   const XmlRpcValue& value = body["resolution"];
-  if (value.getType() != XmlRpcValue::TypeInt || static_cast<int>(value) < 1) {
-    throw SceneError("resolution must be an integer >= 1, got " + Describe(value));
+  if (value.getType() != XmlRpcValue::TypeInt || static_cast<int>(value) < 1 ||
+      static_cast<int>(value) > kMaxShapeResolution) {
+    throw SceneError("resolution must be an integer from 1 to " +
+                     std::to_string(kMaxShapeResolution) + ", got " + Describe(value));
   }
   return static_cast<int>(value);
 }
@@ -295,7 +308,11 @@ void ParseBodies(const XmlRpcValue& bodies, std::vector<core::BodyModel>* models
   if (bodies.getType() != XmlRpcValue::TypeArray || bodies.size() == 0) {
     throw SceneError("~bodies must be a non-empty list of bodies, got " + Describe(bodies));
   }
-  std::vector<std::string> names;
+  if (bodies.size() > kMaxBodies) {
+    throw SceneError("~bodies has " + std::to_string(bodies.size()) + " entries, at most " +
+                     std::to_string(kMaxBodies) + " are allowed");
+  }
+  std::unordered_map<std::string, int> first_entry;  // name → index of its body
   for (int i = 0; i < bodies.size(); ++i) {
     std::string entry = "bodies[" + std::to_string(i) + "]";
     const XmlRpcValue& body = bodies[i];
@@ -310,16 +327,18 @@ void ParseBodies(const XmlRpcValue& bodies, std::vector<core::BodyModel>* models
       throw SceneError(entry + ": name must be a non-empty string, got " + Describe(name));
     }
     entry += " (name '" + static_cast<const std::string&>(name) + "')";
+    if (static_cast<const std::string&>(name).size() > kMaxNameLength) {
+      throw SceneError(entry + ": name is longer than " + std::to_string(kMaxNameLength) +
+                       " characters");
+    }
     if (!IsValidBodyName(name)) {
       throw SceneError(entry + ": name must be a letter then letters, digits or '_' "
                                "(it names a TF frame and topics)");
     }
-    const auto previous = std::find(names.begin(), names.end(), static_cast<const std::string&>(name));
-    if (previous != names.end()) {
-      throw SceneError(entry + ": name duplicates bodies[" +
-                       std::to_string(previous - names.begin()) + "]");
+    const auto [previous, inserted] = first_entry.emplace(static_cast<const std::string&>(name), i);
+    if (!inserted) {
+      throw SceneError(entry + ": name duplicates bodies[" + std::to_string(previous->second) + "]");
     }
-    names.push_back(name);
     try {
       ParseBody(body, models, initial_states);
     } catch (const std::exception& error) {  // SceneError, or the core's std::invalid_argument

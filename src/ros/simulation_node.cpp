@@ -25,6 +25,8 @@ constexpr std::chrono::milliseconds kPausedWait(50);
 constexpr std::uint32_t kWrenchQueueSize = 1000;
 constexpr std::uint32_t kWrenchArrayQueueSize = 100;
 constexpr std::uint32_t kStateQueueSize = 10;
+// Entries of one ParticleWrenchArray taken per message (about 1 ms of work).
+constexpr std::size_t kMaxArrayEntries = 10000;
 
 core::WorldOptions MakeWorldOptions(const NodeSettings& settings) {
   core::WorldOptions options;
@@ -40,7 +42,7 @@ WrenchFrames MakeWrenchFrames(const NodeSettings& settings, const core::World& w
   frames.world_frame = settings.world_frame;
   frames.tf_prefix = settings.tf_prefix;
   for (const core::BodyModel& model : world.models()) {
-    frames.body_names.push_back(model.name());
+    frames.body_index.emplace(model.name(), frames.particle_counts.size());
     frames.particle_counts.push_back(model.particle_count());
   }
   return frames;
@@ -138,7 +140,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
 }
 
 void SimulationNode::Run() {
-  world_.SetStartTime(ros::Time::now().toSec());
+  start_stamp_ = ros::Time::now();
   Clock::time_point next_report = Clock::now() + kReportPeriod;
   pacer_.Restart(Clock::now());
   window_ = ReportWindow{Clock::now(), world_.time()};
@@ -146,7 +148,7 @@ void SimulationNode::Run() {
            "real-time factor %g, start time %.3f s",
            ros::this_node::getName().c_str(), world_.size(), world_.integrator().name(),
            world_.options().dt_s, static_cast<unsigned long long>(publish_every_steps_),
-           settings_.real_time_factor, world_.time());
+           settings_.real_time_factor, start_stamp_.toSec());
 
   ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
   while (ros::ok()) {
@@ -189,8 +191,15 @@ void SimulationNode::ReportNewFaults() {
     reported_faults_[body] = fault;
     ROS_ERROR_THROTTLE(1.0, "body '%s' frozen at its last finite state (%s) at t = %.6f s; "
                        "~reset or ~set_body_state brings it back",
-                       world_.model(body).name().c_str(), core::ToString(fault), world_.time());
+                       world_.model(body).name().c_str(), core::ToString(fault), Stamp().toSec());
   }
+}
+
+ros::Time SimulationNode::Stamp() const {
+  // The world counts time from 0 in doubles of ~1e4 s (resolution ~1e-12 s);
+  // adding it to the start as a ros::Time keeps every stamp on t0 + n·dt to the
+  // nanosecond, which a double of ~1.8e9 s (resolution 2.4e-7 s) would not.
+  return start_stamp_ + ros::Duration(world_.time());
 }
 
 bool SimulationNode::AtPublishBoundary() const {
@@ -198,7 +207,7 @@ bool SimulationNode::AtPublishBoundary() const {
 }
 
 void SimulationNode::Publish() {
-  const ros::Time stamp(world_.time());
+  const ros::Time stamp = Stamp();
   if (settings_.publish_clock) {
     rosgraph_msgs::Clock clock;
     clock.clock = stamp;
@@ -279,7 +288,7 @@ void SimulationNode::Report(Clock::time_point now) {
 
   ROS_INFO("sim time %.3f s (%.3f s since start), real-time factor %.3f%s, %zu bodies, "
            "step %.1f us (max %.1f us), %llu overruns",
-           world_.time(), world_.time() - world_.options().start_time_s, achieved_real_time_factor_,
+           Stamp().toSec(), world_.time(), achieved_real_time_factor_,
            paused_ ? " (paused)" : "", world_.size(),
            step_time_mean_us_, step_time_max_us_,
            static_cast<unsigned long long>(overruns_in_window_));
@@ -303,7 +312,7 @@ void SimulationNode::FillDiagnostics(diagnostic_updater::DiagnosticStatusWrapper
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
   }
-  status.addf("sim_time_s", "%.6f", world_.time());
+  status.addf("sim_time_s", "%.6f", Stamp().toSec());
   status.add("steps", world_.step_count());
   status.add("integrator", world_.integrator().name());
   status.add("dt_s", world_.options().dt_s);
@@ -337,7 +346,7 @@ void SimulationNode::FillDiagnostics(diagnostic_updater::DiagnosticStatusWrapper
 
 void SimulationNode::HoldWrench(const ParticleWrench& msg) {
   // The next step starts at the current simulation time.
-  const ConvertedWrench converted = FromParticleWrench(msg, frames_, world_.time());
+  const ConvertedWrench converted = FromParticleWrench(msg, frames_, start_stamp_, world_.time());
   if (!converted.accepted()) {
     Reject(converted.rejection, converted.detail);
     return;
@@ -367,15 +376,24 @@ void SimulationNode::OnParticleWrench(const ParticleWrench::ConstPtr& msg) { Hol
 
 void SimulationNode::OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg) {
   // In order, each on its own; all of them act from the same step since no
-  // step runs while a callback does.
-  for (const ParticleWrench& wrench : msg->wrenches) HoldWrench(wrench);
+  // step runs while a callback does. Entries past the cap are rejected
+  // unread, so one huge array cannot stall the stepping loop.
+  const std::size_t taken = std::min(msg->wrenches.size(), kMaxArrayEntries);
+  for (std::size_t i = 0; i < taken; ++i) HoldWrench(msg->wrenches[i]);
+  if (taken < msg->wrenches.size()) {
+    const std::size_t dropped = msg->wrenches.size() - taken;
+    rejected_messages_ += dropped;
+    rejected_by_reason_[static_cast<std::size_t>(WrenchMsgRejection::kTooManyEntries)] += dropped;
+    ROS_WARN_THROTTLE(1.0, "rejected %zu array entries past the first %zu (too_many_entries)",
+                      dropped, kMaxArrayEntries);
+  }
 }
 
 bool SimulationNode::OnReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_.Reset();
   reported_faults_.assign(world_.size(), core::BodyFault::kNone);
   conservation_.RebaseAll(world_);
-  ROS_INFO("reset: every body back to its initial state at sim time %.3f s", world_.time());
+  ROS_INFO("reset: every body back to its initial state at sim time %.3f s", Stamp().toSec());
   return true;
 }
 
@@ -390,7 +408,7 @@ bool SimulationNode::OnSetPaused(std_srvs::SetBool::Request& request,
 }
 
 bool SimulationNode::OnStep(Step::Request& request, Step::Response& response) {
-  response.sim_time = world_.time();
+  response.sim_time = Stamp().toSec();
   if (!paused_) {
     response.success = false;
     response.message = "~step works only while paused (call ~set_paused true first)";
@@ -404,7 +422,7 @@ bool SimulationNode::OnStep(Step::Request& request, Step::Response& response) {
   for (std::uint32_t i = 0; i < request.steps; ++i) StepOnce();
   Publish();
   response.success = true;
-  response.sim_time = world_.time();
+  response.sim_time = Stamp().toSec();
   response.message = "stepped " + std::to_string(request.steps) + " steps";
   return true;
 }

@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <rigid_body_sim/BodyState.h>
@@ -39,15 +40,22 @@ std::string BodyFrameId(const std::string& tf_prefix, const std::string& body_na
 struct WrenchFrames {
   std::string world_frame;
   std::string tf_prefix;
-  std::vector<std::string> body_names;         // scene order
-  std::vector<std::size_t> particle_counts;    // per body
+  std::unordered_map<std::string, std::size_t> body_index;  // name → scene order
+  std::vector<std::size_t> particle_counts;                 // per body
 };
 
 // Why a ParticleWrench message (or array entry) was not held.
-enum class WrenchMsgRejection { kNone, kNonFinite, kUnknownBody, kParticleOutOfRange, kUnknownFrame };
-constexpr std::size_t kWrenchMsgRejectionCount = 5;
-// "non_finite", "unknown_body", "particle_out_of_range", "unknown_frame"
-// (the diagnostics key is "rejected_" + this).
+enum class WrenchMsgRejection {
+  kNone,
+  kNonFinite,
+  kUnknownBody,
+  kParticleOutOfRange,
+  kUnknownFrame,
+  kTooManyEntries,  // array entries past the node's per-message cap
+};
+constexpr std::size_t kWrenchMsgRejectionCount = 6;
+// "non_finite", "unknown_body", "particle_out_of_range", "unknown_frame",
+// "too_many_entries" (the diagnostics key is "rejected_" + this).
 const char* ToString(WrenchMsgRejection rejection);
 
 struct ConvertedWrench {
@@ -59,9 +67,10 @@ struct ConvertedWrench {
 
 // A message's frame_id is "" or the world frame → world axes; the body's
 // name, with or without tf_prefix, → body axes. A leading '/' is ignored
-// (tf1 habit). A zero stamp starts at `next_step_time_s`, the simulation time
-// of the next step; otherwise at the stamp.
+// (tf1 habit). Times are simulation times counted from `start_stamp`: a zero
+// stamp starts at `next_step_time_s`, the time of the next step; any other at
+// stamp − start_stamp (exact: ros::Time subtraction is in nanoseconds).
 ConvertedWrench FromParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
-                                      double next_step_time_s);
+                                   const ros::Time& start_stamp, double next_step_time_s);
 
 }  // namespace rigid_body_sim

@@ -57,6 +57,8 @@ class SimulationNode {
   void StepOnce();
   // Logs each body the world froze since the last call, once per fault.
   void ReportNewFaults();
+  // The ROS stamp of the world's current state: start + n·dt.
+  ros::Time Stamp() const;
   bool AtPublishBoundary() const;
   void Publish();
   void PublishParticles(const ros::Time& stamp);
@@ -82,6 +84,7 @@ class SimulationNode {
   StepPacer pacer_;
   ConservationMonitor conservation_;
   bool paused_ = false;
+  ros::Time start_stamp_;  // t0: ROS time when stepping started; the world counts from 0
 
   ros::NodeHandle private_nh_;
   std::vector<ros::Publisher> pose_publishers_;

@@ -1,0 +1,46 @@
+// Collects the peer configurations of the engines this build found
+// (RBS_HAVE_* from cmake/bench_peers.cmake) and names the rest as missing,
+// so that the benchmark can say which lines it skipped and why.
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "engine_peers.h"
+
+namespace rigid_body_sim::bench {
+namespace {
+
+template <typename Names, typename Make>
+void AddAll(const Names& names, Make make, std::vector<std::unique_ptr<Peer>>* peers) {
+  for (const char* name : names) peers->push_back(make(name));
+}
+
+template <typename Names>
+void MarkMissing(const Names& names, std::vector<std::string>* missing) {
+  if (missing == nullptr) return;
+  for (const char* name : names) missing->emplace_back(name);
+}
+
+}  // namespace
+
+std::vector<std::unique_ptr<Peer>> MakePeers(std::vector<std::string>* missing) {
+  std::vector<std::unique_ptr<Peer>> peers;
+#ifdef RBS_HAVE_MUJOCO
+  AddAll(kMujocoConfigurations, MakeMujocoPeer, &peers);
+#else
+  MarkMissing(kMujocoConfigurations, missing);
+#endif
+#ifdef RBS_HAVE_BULLET
+  AddAll(kBulletConfigurations, MakeBulletPeer, &peers);
+#else
+  MarkMissing(kBulletConfigurations, missing);
+#endif
+#ifdef RBS_HAVE_ODE
+  AddAll(kOdeConfigurations, MakeOdePeer, &peers);
+#else
+  MarkMissing(kOdeConfigurations, missing);
+#endif
+  return peers;
+}
+
+}  // namespace rigid_body_sim::bench

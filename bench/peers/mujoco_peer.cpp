@@ -1,0 +1,222 @@
+// MuJoCo 2.2.2 (Debian libmujoco-dev) stepping copies of a free body.
+//
+// Settings, as a MuJoCo user would write a free body, all in the generated MJCF:
+// - Models of `bodies_per_model` bodies (mujoco_euler, mujoco_rk4: one model
+//   with all copies; mujoco_implicit: one model per copy, because 2.2.2's
+//   implicit integrator works on dense nv × nv matrices: with 1,000 bodies
+//   (nv = 6,000) the model does not even fit MuJoCo's default stack, and
+//   its cost would grow as nv³ instead of with the number of bodies). Each
+//   body is a <freejoint/> and an <inertial> with
+//   pos = 0 (the body frame is our body frame, origin at the COM), mass M,
+//   quat = the principal axes R_BP and diaginertia = the principal moments.
+//   The body frame is then the scene's body frame, so qpos is our orientation
+//   directly and qvel's angular part is ω in our body axes.
+// - No geoms: nothing to collide, and <flag contact="disable"/> besides.
+// - gravity = 0, no joint damping, armature or frictionloss (all default 0),
+//   so no passive forces; option timestep = dt.
+// - Integrators (mjtIntegrator in 2.2.2 has exactly these three):
+//   mujoco_euler: mjINT_EULER, "semi-implicit Euler": qvel += dt qacc, then
+//     qpos integrated with the new qvel (the quaternion by the exact rotation
+//     exp(dt ω)). With zero damping nothing is implicit: it is symplectic
+//     Euler with the Coriolis term ω × Iω explicit.
+//   mujoco_rk4: mjINT_RK4, classical Runge–Kutta on (qpos, qvel).
+//   mujoco_implicit: mjINT_IMPLICIT, implicit in velocity: one linear solve
+//     with M − dt ∂(qfrc_passive + qfrc_actuator − qfrc_bias)/∂qvel, which in
+//     2.2.x includes the derivative of the Coriolis/centripetal term (dense
+//     RNE derivatives; 2.3.3 made them sparse and added "implicitfast" without
+//     them). For a free body that is a linearly implicit Euler step of ω.
+// - Loads: xfrc_applied (world force and torque at the body's COM), set from
+//   the pose at the start of the step and held for the whole step (RK4 too).
+// - No clamp on velocities in MuJoCo's free joint.
+#include <algorithm>
+#include <cstdio>
+#include <memory>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <mujoco/mujoco.h>
+
+#include "engine_peers.h"
+#include "peer_loads.h"
+#include "rigid_body_sim/core/kinematics.h"
+
+namespace rigid_body_sim::bench {
+namespace {
+
+// A double printed so that MJCF parsing gives back the same double.
+std::string Exact(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", value);
+  return text;
+}
+
+class MujocoPeer final : public Peer {
+ public:
+  // bodies_per_model <= 0: all copies in one model.
+  MujocoPeer(std::string name, mjtIntegrator integrator, int bodies_per_model)
+      : name_(std::move(name)), integrator_(integrator), bodies_per_model_(bodies_per_model) {}
+  ~MujocoPeer() override { Release(); }
+
+  std::string name() const override { return name_; }
+
+  void Setup(const Scene& scene, int copies, double dt_s) override {
+    Release();
+    scene_ = scene;
+    model_.emplace(scene_.name, scene_.particles);
+    loads_.emplace(scene_, *model_);
+    dt_s_ = dt_s;
+    step_ = 0;
+    const int per_model = bodies_per_model_ > 0 ? bodies_per_model_ : copies;
+    for (int first = 0; first < copies; first += per_model) {
+      Compile(std::min(per_model, copies - first));
+    }
+    // Where each copy lives: its model, body and qpos/qvel addresses, read
+    // from the model so that nothing depends on MuJoCo's layout.
+    for (std::size_t m = 0; m < models_.size(); ++m) {
+      const mjModel* model = models_[m].model;
+      for (int body = 1; body < model->nbody; ++body) {  // body 0 is the world
+        const int joint = model->body_jntadr[body];
+        copies_.push_back({m, body, model->jnt_qposadr[joint], model->jnt_dofadr[joint]});
+      }
+    }
+    const BodyState& s = scene_.initial;
+    const Eigen::Vector3d v = model_->inverse_mass() * s.linear_momentum;
+    const Eigen::Vector3d omega_body = s.orientation.conjugate() * AngularVelocity(*model_, s);
+    for (std::size_t c = 0; c < copies_.size(); ++c) {
+      mjtNum* q = Qpos(c);
+      mjtNum* u = Qvel(c);
+      for (int i = 0; i < 3; ++i) {
+        q[i] = s.position[i];
+        u[i] = v[i];
+        u[3 + i] = omega_body[i];
+      }
+      q[3] = s.orientation.w();
+      q[4] = s.orientation.x();
+      q[5] = s.orientation.y();
+      q[6] = s.orientation.z();
+    }
+  }
+
+  void Step() override {
+    if (!loads_->empty()) {
+      loads_->BeginStep(step_ * dt_s_);
+      for (std::size_t c = 0; c < copies_.size(); ++c) {
+        // qpos is the pose at the start of this step; d->xquat is not: mj_step
+        // computed it before integrating.
+        const Eigen::Matrix3d rotation = Orientation(c).toRotationMatrix();
+        Eigen::Vector3d force, torque;
+        loads_->Wrench(rotation, &force, &torque);
+        mjtNum* wrench = models_[copies_[c].model].data->xfrc_applied + 6 * copies_[c].body;
+        for (int i = 0; i < 3; ++i) {
+          wrench[i] = force[i];
+          wrench[3 + i] = torque[i];
+        }
+      }
+    }
+    for (const Compiled& m : models_) mj_step(m.model, m.data);
+    ++step_;
+  }
+
+  PeerState State(int copy) const override {
+    const mjtNum* q = Qpos(copy);
+    const mjtNum* u = Qvel(copy);
+    const Eigen::Quaterniond orientation = Orientation(copy);
+    return StateFromTwist(*model_, Eigen::Vector3d(q[0], q[1], q[2]), orientation,
+                          Eigen::Vector3d(u[0], u[1], u[2]),
+                          orientation * Eigen::Vector3d(u[3], u[4], u[5]));
+  }
+
+ private:
+  struct Compiled {
+    mjModel* model;
+    mjData* data;
+  };
+  struct Copy {
+    std::size_t model;
+    int body, qpos, qvel;
+  };
+
+  mjtNum* Qpos(std::size_t c) const { return models_[copies_[c].model].data->qpos + copies_[c].qpos; }
+  mjtNum* Qvel(std::size_t c) const { return models_[copies_[c].model].data->qvel + copies_[c].qvel; }
+  Eigen::Quaterniond Orientation(std::size_t c) const {
+    const mjtNum* q = Qpos(c);
+    return Eigen::Quaterniond(q[3], q[4], q[5], q[6]).normalized();
+  }
+
+  std::string Mjcf(int bodies) const {
+    static const char* const kIntegratorNames[] = {"Euler", "RK4", "implicit"};
+    const Eigen::Vector3d& moments = model_->principal_moments();
+    const Eigen::Quaterniond& axes = model_->principal_axes();
+    std::ostringstream inertial;
+    inertial << "<inertial pos=\"0 0 0\" mass=\"" << Exact(model_->mass()) << "\" quat=\""
+             << Exact(axes.w()) << ' ' << Exact(axes.x()) << ' ' << Exact(axes.y()) << ' '
+             << Exact(axes.z()) << "\" diaginertia=\"" << Exact(moments[0]) << ' '
+             << Exact(moments[1]) << ' ' << Exact(moments[2]) << "\"/>";
+    std::ostringstream xml;
+    xml << "<mujoco model=\"rbs_bench\">\n"
+        << "<option timestep=\"" << Exact(dt_s_) << "\" gravity=\"0 0 0\" integrator=\""
+        << kIntegratorNames[integrator_] << "\">\n"
+        << "<flag contact=\"disable\"/>\n</option>\n<worldbody>\n";
+    for (int b = 0; b < bodies; ++b) {
+      xml << "<body name=\"copy" << b << "\"><freejoint/>" << inertial.str() << "</body>\n";
+    }
+    xml << "</worldbody>\n</mujoco>\n";
+    return xml.str();
+  }
+
+  // Compiles the MJCF from memory through MuJoCo's virtual file system.
+  void Compile(int bodies) {
+    const std::string xml = Mjcf(bodies);
+    auto vfs = std::make_unique<mjVFS>();  // ~2 MB: not on the stack
+    mj_defaultVFS(vfs.get());
+    const char* const kFile = "rbs_bench.xml";
+    if (mj_makeEmptyFileVFS(vfs.get(), kFile, static_cast<int>(xml.size())) != 0) {
+      throw std::runtime_error(name_ + ": MuJoCo VFS refused the model");
+    }
+    const int index = mj_findFileVFS(vfs.get(), kFile);
+    std::copy(xml.begin(), xml.end(), static_cast<char*>(vfs->filedata[index]));
+    char error[1000] = "";
+    mjModel* model = mj_loadXML(kFile, vfs.get(), error, sizeof error);
+    mj_deleteVFS(vfs.get());
+    if (model == nullptr) {
+      throw std::runtime_error(name_ + ": MuJoCo rejected the model: " + error);
+    }
+    models_.push_back({model, mj_makeData(model)});
+  }
+
+  void Release() {
+    for (const Compiled& m : models_) {
+      mj_deleteData(m.data);
+      mj_deleteModel(m.model);
+    }
+    models_.clear();
+    copies_.clear();
+  }
+
+  std::string name_;
+  mjtIntegrator integrator_;
+  int bodies_per_model_;
+  Scene scene_;
+  std::optional<BodyModel> model_;
+  std::optional<PeerLoads> loads_;
+  double dt_s_ = 0.0;
+  long step_ = 0;
+  std::vector<Compiled> models_;
+  std::vector<Copy> copies_;
+};
+
+}  // namespace
+
+std::unique_ptr<Peer> MakeMujocoPeer(const std::string& configuration) {
+  if (configuration == "mujoco_euler") return std::make_unique<MujocoPeer>(configuration, mjINT_EULER, 0);
+  if (configuration == "mujoco_rk4") return std::make_unique<MujocoPeer>(configuration, mjINT_RK4, 0);
+  if (configuration == "mujoco_implicit") {
+    return std::make_unique<MujocoPeer>(configuration, mjINT_IMPLICIT, 1);
+  }
+  throw std::invalid_argument("MakeMujocoPeer: unknown configuration " + configuration);
+}
+
+}  // namespace rigid_body_sim::bench

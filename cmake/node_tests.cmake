@@ -1,0 +1,28 @@
+# Node tests: rostest, one scenario per .test file (test/ros/). Included from
+# CMakeLists.txt inside if(CATKIN_ENABLE_TESTING). Run them with
+#   catkin_make run_tests_rigid_body_sim      (all)
+#   rostest rigid_body_sim <name>.test        (one)
+find_package(rostest REQUIRED)
+
+set(_rbs_node_gtests
+  interface
+  constant_force
+  body_axes
+  wrench_semantics
+  bad_input
+  services
+  timing
+  degenerate)
+
+foreach(_t ${_rbs_node_gtests})
+  add_rostest_gtest(${_t}_test test/ros/${_t}.test test/ros/${_t}_test.cpp)
+  if(TARGET ${_t}_test)
+    target_include_directories(${_t}_test PRIVATE ${catkin_INCLUDE_DIRS})
+    target_link_libraries(${_t}_test ${catkin_LIBRARIES} rigid_body_sim_core)
+    add_dependencies(${_t}_test rigid_body_sim_node ${${PROJECT_NAME}_EXPORTED_TARGETS})
+  endif()
+endforeach()
+
+# Pure-launch / Python tests: they only need the node built.
+add_rostest(test/ros/hz.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/invalid_scene.test DEPENDENCIES rigid_body_sim_node)

@@ -1,0 +1,224 @@
+#!/usr/bin/python3
+"""Invalid scenes and parameters stop the node (SPEC "Parameters", last paragraph).
+
+An invalid scene or parameter (missing or empty `bodies`, a duplicate or empty
+name, a mass <= 0 or not finite, a position not of 3 finite numbers, a
+non-positive rate, `publish_rate` > `rate`, an unknown integrator) stops the
+node at start with a non-zero exit and one error line that names the offending
+entry and key.
+
+Each case sets private parameters on the master under a unique node name and
+runs the node executable directly with `__name:=<that name>`, bounded by a
+timeout, then checks: the process exited by itself (not killed by a signal:
+an uncaught exception's abort is not a clean stop) with a code > 0, and stderr
+holds exactly one error line (rosconsole "[ERROR]" / "[FATAL]") naming the key
+and, for an entry of `bodies`, the entry (its name, or its index when the name
+is the problem). A valid scene serves as a control: the node must still be
+running after a few seconds.
+"""
+import math
+import os
+import re
+import signal
+import subprocess
+import time
+import unittest
+
+import rosgraph
+import roslib.packages
+import rospy
+import rostest
+
+PKG = 'rigid_body_sim'
+EXIT_TIMEOUT = 15.0  # s a node gets to exit (start-up of a roscpp node is < 1 s)
+
+
+def particles(mass=1.0):
+    return [{'mass': mass, 'position': [0.0, 0.0, 0.0]},
+            {'mass': mass, 'position': [0.2, 0.0, 0.0]},
+            {'mass': mass, 'position': [0.0, 0.3, 0.0]}]
+
+
+def good_body(name='good'):
+    return {'name': name, 'particles': particles(), 'position': [0.0, 0.0, 1.0]}
+
+
+def bad_body(**over):
+    """A second body named `badbody` (entry index 1) with one field overridden."""
+    b = {'name': 'badbody', 'particles': particles(), 'position': [1.0, 0.0, 0.0]}
+    b.update(over)
+    return b
+
+
+def with_particle(**over):
+    p = particles()
+    p[1] = dict(p[1], **over)
+    return p
+
+
+def find_node_executable():
+    found = roslib.packages.find_node(PKG, 'rigid_body_sim_node')
+    if not found:
+        raise RuntimeError('rigid_body_sim_node not found (catkin_find / devel space)')
+    return found[0]
+
+
+class InvalidScene(unittest.TestCase):
+    exe = None
+    master = None
+    counter = 0
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('invalid_scene_test', anonymous=True)
+        cls.exe = find_node_executable()
+        cls.master = rosgraph.Master('/invalid_scene_test')
+
+    def _node_name(self, tag):
+        InvalidScene.counter += 1
+        return 'rbs_invalid_%d_%s' % (InvalidScene.counter, tag)
+
+    def _set_params(self, name, params):
+        ns = '/' + name
+        try:
+            self.master.deleteParam(ns)
+        except Exception:
+            pass
+        for k, v in params.items():
+            self.master.setParam(ns + '/' + k, v)
+
+    def _run(self, tag, params, timeout=EXIT_TIMEOUT):
+        name = self._node_name(tag)
+        self._set_params(name, params)
+        proc = subprocess.Popen([self.exe, '__name:=' + name],
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE,
+                                env=dict(os.environ, ROSCONSOLE_STDOUT_LINE_BUFFERED='1'))
+        try:
+            out, err = proc.communicate(timeout=timeout)
+            return proc.returncode, out.decode(errors='replace'), err.decode(errors='replace')
+        except subprocess.TimeoutExpired:
+            proc.send_signal(signal.SIGINT)
+            try:
+                out, err = proc.communicate(timeout=5.0)
+            except subprocess.TimeoutExpired:
+                proc.kill()
+                out, err = proc.communicate()
+            return None, out.decode(errors='replace'), err.decode(errors='replace')
+
+    @staticmethod
+    def _error_lines(text):
+        lines = [l for l in text.splitlines() if re.search(r'\[\s*(ERROR|FATAL)\s*\]', l)]
+        # Drop the "[ERROR] [1700000000.123456]:" prefix so that digits of the
+        # time do not count as an entry index.
+        return [re.sub(r'^.*?\[\s*(ERROR|FATAL)\s*\]\s*(\[[^\]]*\]\s*)?:?\s*', '', l)
+                for l in lines]
+
+    def check_rejected(self, tag, params, key, entry=None, index=None):
+        """Node must exit > 0 with one error line naming `key` (and the entry)."""
+        code, out, err = self._run(tag, params)
+        ctx = '\n--- case %s: exit %s\n--- stderr:\n%s\n--- stdout:\n%s' % (tag, code, err, out)
+        self.assertIsNotNone(code, 'node did not exit within %.0f s%s' % (EXIT_TIMEOUT, ctx))
+        self.assertGreater(code, 0, 'exit code must be non-zero (and not a signal)%s' % ctx)
+        # rosconsole sends ERROR/FATAL to stderr.
+        lines = self._error_lines(err)
+        self.assertEqual(len(lines), 1, 'expected exactly one error line%s' % ctx)
+        line = lines[0]
+        self.assertIn(key, line, 'error line does not name the key %r%s' % (key, ctx))
+        if entry is not None or index is not None:
+            named = (entry is not None and entry in line) or (
+                index is not None and re.search(r'(\[|\b)%d(\]|\b)' % index, line))
+            self.assertTrue(named, 'error line does not name the entry (%r / index %r)%s'
+                            % (entry, index, ctx))
+
+    # ---- control ---------------------------------------------------------
+
+    def test_00_valid_scene_keeps_running(self):
+        code, out, err = self._run('valid', {'bodies': [good_body(), bad_body()]}, timeout=4.0)
+        self.assertIsNone(code, 'a valid scene must keep the node running; exit %s\n%s'
+                          % (code, err))
+
+    # ---- bodies ------------------------------------------------------------
+
+    def test_missing_bodies(self):
+        self.check_rejected('missing_bodies', {'rate': 1000.0}, 'bodies')
+
+    def test_empty_bodies(self):
+        self.check_rejected('empty_bodies', {'bodies': []}, 'bodies')
+
+    def test_duplicate_name(self):
+        self.check_rejected('duplicate_name', {'bodies': [good_body('twin'), good_body('twin')]},
+                            'name', entry='twin')
+
+    def test_empty_name(self):
+        self.check_rejected('empty_name', {'bodies': [good_body(), bad_body(name='')]},
+                            'name', index=1)
+
+    def test_mass_zero(self):
+        self.check_rejected('mass_zero',
+                            {'bodies': [good_body(), bad_body(particles=with_particle(mass=0.0))]},
+                            'mass', entry='badbody', index=1)
+
+    def test_mass_negative(self):
+        self.check_rejected('mass_negative',
+                            {'bodies': [good_body(), bad_body(particles=with_particle(mass=-1.0))]},
+                            'mass', entry='badbody', index=1)
+
+    def test_mass_nan(self):
+        self.check_rejected('mass_nan',
+                            {'bodies': [good_body(),
+                                        bad_body(particles=with_particle(mass=float('nan')))]},
+                            'mass', entry='badbody', index=1)
+
+    def test_mass_inf(self):
+        self.check_rejected('mass_inf',
+                            {'bodies': [good_body(),
+                                        bad_body(particles=with_particle(mass=float('inf')))]},
+                            'mass', entry='badbody', index=1)
+
+    def test_particle_position_two_numbers(self):
+        self.check_rejected('particle_position_2',
+                            {'bodies': [good_body(),
+                                        bad_body(particles=with_particle(position=[0.0, 1.0]))]},
+                            'position', entry='badbody', index=1)
+
+    def test_particle_position_not_finite(self):
+        self.check_rejected('particle_position_inf',
+                            {'bodies': [good_body(), bad_body(
+                                particles=with_particle(position=[0.0, float('inf'), 0.0]))]},
+                            'position', entry='badbody', index=1)
+
+    def test_body_position_four_numbers(self):
+        self.check_rejected('body_position_4',
+                            {'bodies': [good_body(), bad_body(position=[1.0, 2.0, 3.0, 4.0])]},
+                            'position', entry='badbody', index=1)
+
+    def test_body_position_not_numbers(self):
+        self.check_rejected('body_position_str',
+                            {'bodies': [good_body(), bad_body(position='up')]},
+                            'position', entry='badbody', index=1)
+
+    # ---- node parameters ---------------------------------------------------
+
+    def test_rate_zero(self):
+        self.check_rejected('rate_zero', {'rate': 0.0, 'bodies': [good_body()]}, 'rate')
+
+    def test_rate_negative(self):
+        self.check_rejected('rate_negative', {'rate': -100.0, 'bodies': [good_body()]}, 'rate')
+
+    def test_publish_rate_zero(self):
+        self.check_rejected('publish_rate_zero',
+                            {'publish_rate': 0.0, 'bodies': [good_body()]}, 'publish_rate')
+
+    def test_publish_rate_above_rate(self):
+        self.check_rejected('publish_rate_above_rate',
+                            {'rate': 100.0, 'publish_rate': 200.0, 'bodies': [good_body()]},
+                            'publish_rate')
+
+    def test_unknown_integrator(self):
+        self.check_rejected('unknown_integrator',
+                            {'integrator': 'no_such_scheme', 'bodies': [good_body()]},
+                            'integrator')
+
+
+if __name__ == '__main__':
+    rostest.rosrun(PKG, 'invalid_scene', InvalidScene)
