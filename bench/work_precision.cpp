@@ -74,14 +74,24 @@ BodyState RunOurs(const Scene& scene, const BodyModel& model, const Integrator& 
   return state;
 }
 
-// Median ns per body-step over kTimedBodies bodies.
+// Median ns per body-step over kTimedBodies bodies: kTimingRepeats samples of
+// about kSampleTarget_ns each (at most max_steps steps), after one warm-up
+// step that also sizes the samples.
+constexpr double kSampleTarget_ns = 2e7;
+
 template <typename StepAll>
-double TimePerBodyStep(int steps, StepAll step_all) {
+double TimePerBodyStep(long max_steps, StepAll step_all) {
+  using Clock = std::chrono::steady_clock;
+  const auto warm_up_start = Clock::now();
+  step_all(0);
+  const double one_step_ns =
+      std::chrono::duration<double, std::nano>(Clock::now() - warm_up_start).count();
+  const long steps = std::clamp<long>(std::lround(kSampleTarget_ns / one_step_ns), 1, max_steps);
   std::vector<double> samples;
   for (int r = 0; r < kTimingRepeats; ++r) {
-    const auto start = std::chrono::steady_clock::now();
-    for (int n = 0; n < steps; ++n) step_all(n);
-    const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
+    const auto start = Clock::now();
+    for (long n = 1; n <= steps; ++n) step_all(n);
+    const std::chrono::duration<double, std::nano> elapsed = Clock::now() - start;
     samples.push_back(elapsed.count() / (double(steps) * kTimedBodies));
   }
   std::nth_element(samples.begin(), samples.begin() + samples.size() / 2, samples.end());
@@ -89,11 +99,11 @@ double TimePerBodyStep(int steps, StepAll step_all) {
 }
 
 double TimeOurs(const Scene& scene, const BodyModel& model, const Integrator& integrator,
-                double dt, int steps) {
+                double dt, long steps) {
   SceneLoad load(scene, model);
   const bool loaded = !scene.forces.empty() || !scene.constant_couple.isZero();
   std::vector<BodyState> states(kTimedBodies, scene.initial);
-  return TimePerBodyStep(steps, [&](int n) {
+  return TimePerBodyStep(steps, [&](long n) {
     load.set_step_start(n * dt);
     for (BodyState& state : states) integrator.Step(model, loaded ? &load : nullptr, dt, &state);
   });
@@ -214,7 +224,7 @@ int main(int argc, char** argv) {
     for (std::size_t d = 0; d < dts.size(); ++d) {
       const double dt = dts[d];
       const BodyState& expected = reference.at_end[d];
-      const int timed_steps = static_cast<int>(std::min<long>(100, StepCount(scene, dt)));
+      const long timed_steps = std::min<long>(100, StepCount(scene, dt));
       for (const std::string& name : IntegratorNames()) {
         const auto integrator = MakeIntegrator(name);
         FlipCounter flips;

@@ -25,6 +25,7 @@ void MarkMissing(const Names& names, std::vector<std::string>* missing) {
 
 std::vector<std::unique_ptr<Peer>> MakePeers(std::vector<std::string>* missing) {
   std::vector<std::unique_ptr<Peer>> peers;
+  (void)missing;  // unused when every engine was found
 #ifdef RBS_HAVE_MUJOCO
   AddAll(kMujocoConfigurations, MakeMujocoPeer, &peers);
 #else
