@@ -7,3 +7,9 @@ target_link_libraries(work_precision rigid_body_sim_bench_peers rigid_body_sim_c
 
 add_executable(throughput_bench bench/throughput_bench.cpp)
 target_link_libraries(throughput_bench rigid_body_sim_core benchmark::benchmark)
+
+# Floods the node's wrench topics (scripts/flood.sh).
+add_executable(wrench_flood bench/wrench_flood.cpp)
+target_include_directories(wrench_flood PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(wrench_flood ${catkin_LIBRARIES})
+add_dependencies(wrench_flood ${${PROJECT_NAME}_EXPORTED_TARGETS})
