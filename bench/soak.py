@@ -34,8 +34,7 @@ from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
 from rigid_body_sim.msg import BodyStateArray, ParticleWrench  # noqa: E402
 from visualization_msgs.msg import MarkerArray  # noqa: E402
 
-launch = subprocess.Popen(["roslaunch", "-p", str(args.port), "rigid_body_sim", "rigid_body_sim.launch",
-                           ],
+launch = subprocess.Popen(["roslaunch", "-p", str(args.port), "rigid_body_sim", "rigid_body_sim.launch"],
                           stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
 try:
     rospy.init_node("soak_driver", anonymous=True)
