@@ -5,6 +5,9 @@ include(${CMAKE_CURRENT_LIST_DIR}/bench_peers.cmake)
 add_executable(work_precision bench/work_precision.cpp bench/scene_load.cpp)
 target_link_libraries(work_precision rigid_body_sim_bench_peers rigid_body_sim_core)
 
+add_executable(stability_stress bench/stability_stress.cpp)
+target_link_libraries(stability_stress rigid_body_sim_core)
+
 add_executable(throughput_bench bench/throughput_bench.cpp)
 target_link_libraries(throughput_bench rigid_body_sim_core benchmark::benchmark)
 
