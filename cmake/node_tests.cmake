@@ -12,7 +12,8 @@ set(_rbs_node_gtests
   bad_input
   services
   timing
-  degenerate)
+  degenerate
+  fault)
 
 foreach(_t ${_rbs_node_gtests})
   add_rostest_gtest(${_t}_test test/ros/${_t}.test test/ros/${_t}_test.cpp)
