@@ -27,3 +27,5 @@ endforeach()
 # Pure-launch / Python tests: they only need the node built.
 add_rostest(test/ros/hz.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/invalid_scene.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/readme_examples.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/respawn.test DEPENDENCIES rigid_body_sim_node)

@@ -1,0 +1,564 @@
+#!/usr/bin/python3
+"""The README's node examples, run against a running node so that they cannot rot.
+
+The README section between `<!-- node:begin -->` and `<!-- node:end -->` is
+read at test time; every ```bash fenced block in it is split into commands
+(joining `\\` continuations and quoted strings that span lines). Commands that
+call `rostopic` or `rosservice` are run in README order with `/bin/bash -c`
+against the node started by readme_examples.test (launch/rigid_body_sim.launch
+with its defaults: node `/rigid_body_sim`, the default scene). Build and launch
+lines (`bash scripts/...`, `source ...`, `roslaunch ...`) are skipped; any other
+command makes the test fail, so a new kind of example cannot go unchecked.
+
+For each command:
+- it exits with code 0 within COMMAND_TIMEOUT s; a command that runs until
+  interrupted (`rostopic echo/hz/bw/delay` without `-n`, `rostopic pub`
+  without `-1`) runs for STREAM_SECONDS s, is interrupted and must have
+  printed at least one message;
+- `rostopic echo -n N` printed a message (`---`);
+- `rosservice call`: when the service's response has a `success` field, the
+  output says `success: True`;
+- effects, checked on `~bodies` (read with rospy all along):
+  * `rostopic pub` of a ParticleWrench / ParticleWrenchArray: every body the
+    message pushes with a non-zero wrench changed its momentum or angular
+    momentum, and, for every body, dp/dt and dL/dt measured between two
+    consecutive `~bodies` messages equal the force and torque of the wrenches
+    held (a model of them kept by this test: world or body axes per frame_id,
+    a later wrench for the same (body, particle) replaces an earlier one, a
+    zero one removes it; torque = sum of r_i x f_i plus couples, with r_i from
+    `~particles`);
+  * `~clear_wrenches`: the model is emptied, so every dp/dt and dL/dt is 0;
+  * `~reset`: every body's p, L and kinetic energy equal those published at
+    start (invariants of the torque-free motion), stamps still increase;
+  * `~set_paused true`: no `~bodies` message for 1 s; `~step N`: exactly one
+    message whose stamp is the response's `sim_time`, N to N + k - 1 steps
+    after the last one before pausing (k = rate / publish_rate); `false`:
+    messages flow again with later stamps;
+  * `~set_body_state`: the body's next state has the requested position,
+    orientation, linear and angular velocity.
+- the node's PID is the same at the end as at the start (with respawn on, a
+  crash would otherwise go unnoticed).
+
+A failure names the README line number and the command.
+"""
+import math
+import os
+import re
+import shlex
+import signal
+import subprocess
+import threading
+import time
+import unittest
+
+import rosgraph
+import rosnode
+import rospkg
+import rospy
+import rosservice
+import rostest
+import yaml
+from xmlrpc.client import ServerProxy
+
+from rigid_body_sim.msg import BodyStateArray
+from visualization_msgs.msg import MarkerArray
+
+PKG = 'rigid_body_sim'
+NODE = '/rigid_body_sim'
+COMMAND_TIMEOUT = 20.0   # s; `rostopic pub -1` takes about 3 s
+STREAM_SECONDS = 4.0     # s a never-ending command runs before it is interrupted
+STARTUP_TIMEOUT = 30.0   # s to wait for the node's first ~bodies message
+RUN_COMMANDS = ('rostopic', 'rosservice')
+SKIP_PREFIXES = ('bash scripts/', 'source ', 'roslaunch ', '. ')
+STREAMING_ECHO = ('echo', 'hz', 'bw', 'delay')
+REL_TOL = 0.05           # dp/dt, dL/dt vs. the held wrenches (bodies spin up to ~20 rad/s)
+ABS_TOL = 2e-3           # N, N m
+
+
+# ---- README parsing ---------------------------------------------------------
+
+def readme_path():
+    return os.path.join(rospkg.RosPack().get_path(PKG), 'README.md')
+
+
+def node_section(text):
+    begin = text.index('<!-- node:begin -->')
+    end = text.index('<!-- node:end -->')
+    first_line = text.count('\n', 0, begin) + 1
+    return text[begin:end], first_line
+
+
+def bash_commands(section, first_line):
+    """[(README line number, command text)] of every ```bash block, in order."""
+    commands = []
+    in_bash = False
+    buf, buf_line = [], None
+    for offset, line in enumerate(section.split('\n')):
+        lineno = first_line + offset
+        stripped = line.strip()
+        if stripped.startswith('```'):
+            if in_bash and buf:
+                raise ValueError('README line %d: unterminated command at the end of a '
+                                 'bash block: %r' % (buf_line, '\n'.join(buf)))
+            in_bash = (not in_bash) and stripped == '```bash'
+            buf, buf_line = [], None
+            continue
+        if not in_bash:
+            continue
+        if not buf and (not stripped or stripped.startswith('#')):
+            continue
+        if not buf:
+            buf_line = lineno
+        buf.append(line)
+        text = '\n'.join(buf)
+        if text.rstrip().endswith('\\'):
+            continue
+        try:
+            shlex.split(text, comments=True)
+        except ValueError:       # a quoted string goes on over the next line
+            continue
+        commands.append((buf_line, text))
+        buf, buf_line = [], None
+    return commands
+
+
+def words(command):
+    return shlex.split(command.replace('\\\n', ' '), comments=True)
+
+
+def classify(command):
+    """'run', 'stream' (runs until interrupted) or 'skip'; None: unknown."""
+    w = words(command)
+    flat = ' '.join(w)
+    if any(flat.startswith(p) for p in SKIP_PREFIXES):
+        return 'skip'
+    if not w or w[0] not in RUN_COMMANDS:
+        return None
+    if w[0] == 'rostopic' and len(w) > 1:
+        if w[1] in STREAMING_ECHO and not any(a == '-n' or a.startswith('-n') for a in w[2:]):
+            return 'stream'
+        if w[1] == 'pub' and not any(a in ('-1', '--once') or a.startswith('-f')
+                                     for a in w[2:]):
+            return 'stream'
+    return 'run'
+
+
+def positional(args):
+    """Positional arguments after the sub-command, options (and -n's value) dropped."""
+    out, skip = [], False
+    for a in args:
+        if skip:
+            skip = False
+            continue
+        if a in ('-n', '-r', '--rate', '-s', '--filter', '-w', '--window'):
+            skip = True
+            continue
+        if a.startswith('-'):
+            continue
+        out.append(a)
+    return out
+
+
+# ---- small vector algebra (no numpy in Debian's ROS python here) ------------
+
+def vec(v):
+    return (v.x, v.y, v.z)
+
+
+def add(a, b):
+    return tuple(x + y for x, y in zip(a, b))
+
+
+def sub(a, b):
+    return tuple(x - y for x, y in zip(a, b))
+
+
+def scale(s, a):
+    return tuple(s * x for x in a)
+
+
+def cross(a, b):
+    return (a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0])
+
+
+def norm(a):
+    return math.sqrt(sum(x * x for x in a))
+
+
+def rot(q):
+    """Rotation matrix (rows) of a geometry_msgs quaternion, normalised."""
+    x, y, z, w = q.x, q.y, q.z, q.w
+    n = math.sqrt(x * x + y * y + z * z + w * w)
+    x, y, z, w = x / n, y / n, z / n, w / n
+    return ((1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)),
+            (2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)),
+            (2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)))
+
+
+def mul(m, v):
+    return tuple(sum(m[i][j] * v[j] for j in range(3)) for i in range(3))
+
+
+def mul_t(m, v):
+    return tuple(sum(m[j][i] * v[j] for j in range(3)) for i in range(3))
+
+
+def get3(d, key):
+    d = (d or {}).get(key) or {}
+    return (float(d.get('x', 0.0)), float(d.get('y', 0.0)), float(d.get('z', 0.0)))
+
+
+# ---- the test ---------------------------------------------------------------
+
+class ReadmeExamples(unittest.TestCase):
+
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('readme_examples_test', anonymous=True)
+        cls.lock = threading.Lock()
+        cls.bodies_msgs = []      # (receipt wall time, BodyStateArray)
+        cls.particles = {}        # stamp ns -> MarkerArray (recent only)
+        rospy.Subscriber(NODE + '/bodies', BodyStateArray, cls._on_bodies, queue_size=1000)
+        rospy.Subscriber(NODE + '/particles', MarkerArray, cls._on_particles, queue_size=1000)
+
+    @classmethod
+    def _on_bodies(cls, msg):
+        with cls.lock:
+            cls.bodies_msgs.append((time.time(), msg))
+            del cls.bodies_msgs[:-3000]
+
+    @classmethod
+    def _on_particles(cls, msg):
+        if not msg.markers:
+            return
+        with cls.lock:
+            cls.particles[msg.markers[0].header.stamp.to_nsec()] = msg
+            if len(cls.particles) > 3000:
+                for k in sorted(cls.particles)[:-3000]:
+                    del cls.particles[k]
+
+    # -- helpers --------------------------------------------------------------
+
+    def count(self):
+        with self.lock:
+            return len(self.bodies_msgs)
+
+    def last(self):
+        with self.lock:
+            return self.bodies_msgs[-1][1] if self.bodies_msgs else None
+
+    def since(self, n):
+        with self.lock:
+            return [m for _, m in self.bodies_msgs[n:]]
+
+    def wait_new(self, n0, count, timeout, where):
+        deadline = time.time() + timeout
+        while time.time() < deadline and self.count() - n0 < count:
+            time.sleep(0.01)
+        msgs = self.since(n0)
+        self.assertGreaterEqual(len(msgs), count, '%s: %d ~bodies message(s) within %.1f s, '
+                                'expected %d' % (where, len(msgs), timeout, count))
+        return msgs
+
+    def node_pid(self):
+        uri = rosnode.get_api_uri(rosgraph.Master('/readme_examples_test'), NODE,
+                                  skip_cache=True)
+        self.assertTrue(uri, 'node %s not registered' % NODE)
+        code, _, pid = ServerProxy(uri).getPid('/readme_examples_test')
+        self.assertEqual(code, 1)
+        return pid
+
+    def run_command(self, lineno, command, kind):
+        where = 'README.md line %d: `%s`' % (lineno, command.strip())
+        proc = subprocess.Popen(['/bin/bash', '-c', command], stdout=subprocess.PIPE,
+                                stderr=subprocess.PIPE, start_new_session=True)
+        limit = STREAM_SECONDS if kind == 'stream' else COMMAND_TIMEOUT
+        timed_out = False
+        try:
+            out, err = proc.communicate(timeout=limit)
+        except subprocess.TimeoutExpired:
+            timed_out = True
+            os.killpg(proc.pid, signal.SIGINT)
+            try:
+                out, err = proc.communicate(timeout=5.0)
+            except subprocess.TimeoutExpired:
+                os.killpg(proc.pid, signal.SIGKILL)
+                out, err = proc.communicate()
+        out, err = out.decode(errors='replace'), err.decode(errors='replace')
+        ctx = '%s\n--- exit %s\n--- stdout:\n%s\n--- stderr:\n%s' % (
+            where, proc.returncode, out[-3000:], err[-3000:])
+        if kind == 'stream':
+            self.assertTrue(timed_out, '%s: expected to run until interrupted\n%s'
+                            % (where, ctx))
+            self.assertIn('---', out, '%s: printed no message in %.0f s\n%s'
+                          % (where, STREAM_SECONDS, ctx))
+        else:
+            self.assertFalse(timed_out, '%s: did not finish within %.0f s\n%s'
+                             % (where, COMMAND_TIMEOUT, ctx))
+            self.assertEqual(proc.returncode, 0, 'README command failed: %s' % ctx)
+        return out, ctx
+
+    # -- the wrench model and the momentum rates --------------------------------
+
+    def reference_offsets(self):
+        """body name -> particle offsets r̄_i in body axes, from matching
+        ~bodies and ~particles messages."""
+        deadline = time.time() + 10.0
+        while time.time() < deadline:
+            with self.lock:
+                pairs = [(m, self.particles.get(m.header.stamp.to_nsec()))
+                         for _, m in self.bodies_msgs[-50:]]
+            pairs = [(b, p) for b, p in pairs if p is not None]
+            if pairs:
+                bodies, markers = pairs[-1]
+                offsets = {}
+                for b, marker in zip(bodies.bodies, markers.markers):
+                    a = rot(b.pose.orientation)
+                    c = vec(b.pose.position)
+                    offsets[b.name] = [mul_t(a, sub(vec(p), c)) for p in marker.points]
+                return offsets
+            time.sleep(0.05)
+        self.fail('no ~particles message with the stamp of a ~bodies message in 10 s')
+
+    def predicted(self, state):
+        """(dp/dt, dL/dt) of one body from the wrenches held in the model."""
+        a = rot(state.pose.orientation)
+        force, torque = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
+        for (body, particle), (in_body_axes, f, t) in self.held.items():
+            if body != state.name:
+                continue
+            if in_body_axes:
+                f, t = mul(a, f), mul(a, t)
+            r = mul(a, self.offsets[body][particle])
+            force = add(force, f)
+            torque = add(torque, add(cross(r, f), t))
+        return force, torque
+
+    def check_rates(self, where, pairs=2):
+        """dp/dt and dL/dt between consecutive ~bodies messages = the held wrenches."""
+        n0 = self.count()
+        msgs = self.wait_new(n0, pairs + 1, 5.0, where)
+        checked = 0
+        for m1, m2 in zip(msgs, msgs[1:]):
+            dt = (m2.header.stamp - m1.header.stamp).to_sec()
+            self.assertGreater(dt, 0.0, '%s: ~bodies stamps not increasing' % where)
+            for b1, b2 in zip(m1.bodies, m2.bodies):
+                f1, t1 = self.predicted(b1)
+                f2, t2 = self.predicted(b2)
+                f, t = scale(0.5, add(f1, f2)), scale(0.5, add(t1, t2))
+                dp = scale(1.0 / dt, sub(vec(b2.linear_momentum), vec(b1.linear_momentum)))
+                dl = scale(1.0 / dt, sub(vec(b2.angular_momentum), vec(b1.angular_momentum)))
+                for name, got, want in (('dp/dt', dp, f), ('dL/dt', dl, t)):
+                    self.assertLessEqual(
+                        norm(sub(got, want)), REL_TOL * norm(want) + ABS_TOL,
+                        '%s: body %s: %s = (%.4g, %.4g, %.4g) over [%s, %s], expected '
+                        '(%.4g, %.4g, %.4g) from the held wrenches %r'
+                        % (where, b1.name, name, got[0], got[1], got[2], m1.header.stamp,
+                           m2.header.stamp, want[0], want[1], want[2], self.held))
+            checked += 1
+        self.assertGreaterEqual(checked, 1)
+
+    def apply_push(self, where, args, before):
+        """Update the held-wrench model from a `rostopic pub` of the README."""
+        pos = positional(args[2:])
+        self.assertGreaterEqual(len(pos), 3, '%s: expected topic, type and message' % where)
+        topic, msg_type, text = pos[0], pos[1], ' '.join(pos[2:])
+        data = yaml.safe_load(text)
+        if topic.endswith('/particle_wrench') and msg_type.endswith('ParticleWrench'):
+            entries = [data]
+        elif topic.endswith('/particle_wrenches') and msg_type.endswith('ParticleWrenchArray'):
+            entries = data.get('wrenches', [])
+        else:
+            return None   # not a push: no model to update
+        names = [b.name for b in before.bodies]
+        pushed = set()
+        for e in entries:
+            header = e.get('header') or {}
+            stamp = header.get('stamp') or {}
+            if isinstance(stamp, dict) and (stamp.get('secs') or stamp.get('nsecs')):
+                self.skipTest('%s: a stamped wrench; the model handles zero stamps only' % where)
+            frame = str(header.get('frame_id', '') or '').lstrip('/')
+            body = e.get('body')
+            particle = int(e.get('particle', 0))
+            self.assertIn(body, names, '%s: unknown body %r in the example' % (where, body))
+            self.assertLess(particle, len(self.offsets[body]),
+                            '%s: particle %d out of range for %s' % (where, particle, body))
+            self.assertIn(frame, ('', 'world', body),
+                          '%s: frame_id %r: neither world nor the body' % (where, frame))
+            wrench = e.get('wrench') or {}
+            f, t = get3(wrench, 'force'), get3(wrench, 'torque')
+            if norm(f) == 0.0 and norm(t) == 0.0:
+                self.held.pop((body, particle), None)
+            else:
+                self.held[(body, particle)] = (frame == body, f, t)
+                pushed.add(body)
+        return pushed
+
+    # -- the tests --------------------------------------------------------------
+
+    def test_readme_examples(self):
+        path = readme_path()
+        with open(path) as f:
+            section, first_line = node_section(f.read())
+        commands = bash_commands(section, first_line)
+        kinds = [(lineno, cmd, classify(cmd)) for lineno, cmd in commands]
+        unknown = ['line %d: %s' % (l, c) for l, c, k in kinds if k is None]
+        self.assertFalse(unknown, 'README bash commands neither run by this test nor known '
+                         'build/launch lines (extend readme_examples_test.py):\n'
+                         + '\n'.join(unknown))
+        to_run = [(l, c, k) for l, c, k in kinds if k != 'skip']
+        self.assertTrue(any(words(c)[:2] == ['rostopic', 'pub'] for _, c, _ in to_run),
+                        'no `rostopic pub` example found in %s' % path)
+        self.assertTrue(any(words(c)[0] == 'rosservice' for _, c, _ in to_run),
+                        'no `rosservice` example found in %s' % path)
+
+        # The node is up, the scene is torque-free (default scene: no gravity).
+        self.wait_new(0, 1, STARTUP_TIMEOUT, 'start-up')
+        gravity = rospy.get_param(NODE + '/gravity', [0.0, 0.0, 0.0])
+        self.assertEqual(norm(gravity), 0.0, 'the test expects the default scene (no gravity)')
+        rate = float(rospy.get_param(NODE + '/rate', 1000.0))
+        publish_rate = float(rospy.get_param(NODE + '/publish_rate', 100.0))
+        dt, k = 1.0 / rate, int(round(rate / publish_rate))
+        pid = self.node_pid()
+        self.offsets = self.reference_offsets()
+        initial = self.last()
+        self.held = {}
+        paused = False
+        last_before_pause = None
+
+        for lineno, command, kind in to_run:
+            where = 'README.md line %d: `%s`' % (lineno, ' '.join(words(command)))
+            rospy.loginfo('running %s', where)
+            args = words(command)
+            before = self.last()
+            n_before = self.count()
+            if kind == 'stream':
+                self.run_command(lineno, command, kind)
+                continue
+            out, ctx = self.run_command(lineno, command, kind)
+
+            if args[0] == 'rostopic' and args[1] == 'echo':
+                self.assertIn('---', out, '%s: printed no message\n%s' % (where, ctx))
+            elif args[0] == 'rostopic' and args[1] == 'pub':
+                pushed = self.apply_push(where, args, before)
+                if pushed is not None and not paused:
+                    after = self.wait_new(self.count(), 1, 5.0, where)[-1]
+                    for b0, b1 in zip(before.bodies, after.bodies):
+                        if b0.name in pushed:
+                            change = (norm(sub(vec(b1.linear_momentum), vec(b0.linear_momentum)))
+                                      + norm(sub(vec(b1.angular_momentum),
+                                                 vec(b0.angular_momentum))))
+                            self.assertGreater(change, 1e-3, '%s: body %s pushed but its p and '
+                                               'L did not change' % (where, b0.name))
+            elif args[0] == 'rosservice' and args[1] == 'call':
+                pos = positional(args[2:])
+                service = pos[0]
+                request = yaml.safe_load(' '.join(pos[1:])) if len(pos) > 1 else None
+                cls = rosservice.get_service_class_by_name(service)
+                if 'success' in cls._response_class.__slots__:
+                    self.assertRegex(out, r'(?m)^success: True$',
+                                     '%s: the response is not a success\n%s' % (where, ctx))
+                name = service.rstrip('/').split('/')[-1]
+                if name == 'clear_wrenches':
+                    self.held = {}
+                elif name == 'reset':
+                    self.held = {}
+                    self.check_reset(where, initial, before)
+                elif name == 'set_paused':
+                    paused = bool(request['data'])
+                    if paused:
+                        time.sleep(0.2)   # a message already on its way may still arrive
+                        last_before_pause = self.last()
+                        n = self.count()
+                        time.sleep(1.0)
+                        self.assertEqual(self.count(), n, '%s: ~bodies still published '
+                                         'while paused' % where)
+                    else:
+                        msgs = self.wait_new(n_before, 1, 2.0, where + ' (resumed)')
+                        self.assertGreater(msgs[0].header.stamp, before.header.stamp,
+                                           '%s: stamps went back after resuming' % where)
+                elif name == 'step':
+                    steps = int(request['steps'])
+                    m = re.search(r'(?m)^sim_time: (\S+)$', out)
+                    self.assertIsNotNone(m, '%s: no sim_time in the response\n%s' % (where, ctx))
+                    sim_time = float(m.group(1))
+                    time.sleep(0.3)
+                    msgs = self.since(n_before)
+                    self.assertEqual(len(msgs), 1, '%s: expected exactly one ~bodies message '
+                                     'after the step, got %d' % (where, len(msgs)))
+                    stamp = msgs[0].header.stamp.to_sec()
+                    self.assertAlmostEqual(stamp, sim_time, delta=1e-6,
+                                           msg='%s: published stamp %.9f != sim_time %.9f'
+                                           % (where, stamp, sim_time))
+                    advance = (msgs[0].header.stamp - last_before_pause.header.stamp).to_sec()
+                    self.assertTrue(steps * dt - 1e-7 <= advance <= (steps + k - 1) * dt + 1e-7,
+                                    '%s: the state advanced %.6f s since the last message '
+                                    'before pausing; expected %d to %d steps of %g s'
+                                    % (where, advance, steps, steps + k - 1, dt))
+                    last_before_pause = msgs[0]
+                elif name == 'set_body_state':
+                    self.check_set_body_state(where, request, n_before)
+            if not paused:
+                self.check_rates(where)
+
+        self.assertEqual(self.node_pid(), pid, 'the node restarted during the README '
+                         'examples (it crashed and was respawned)')
+
+    def check_reset(self, where, initial, before):
+        after = self.wait_new(self.count(), 1, 5.0, where)[-1]
+        self.assertGreater(after.header.stamp, before.header.stamp,
+                           '%s: stamps went back after reset' % where)
+        for b0, b1 in zip(initial.bodies, after.bodies):
+            for name, x0, x1 in (('p', vec(b0.linear_momentum), vec(b1.linear_momentum)),
+                                 ('L', vec(b0.angular_momentum), vec(b1.angular_momentum))):
+                self.assertLessEqual(norm(sub(x1, x0)), 1e-6 * norm(x0) + 1e-9,
+                                     '%s: body %s: %s = %r after reset, %r at start'
+                                     % (where, b0.name, name, x1, x0))
+            self.assertAlmostEqual(b1.kinetic_energy, b0.kinetic_energy,
+                                   delta=1e-4 * b0.kinetic_energy + 1e-9,
+                                   msg='%s: body %s: kinetic energy %.9g after reset, %.9g at '
+                                   'start' % (where, b0.name, b1.kinetic_energy,
+                                              b0.kinetic_energy))
+
+    def check_set_body_state(self, where, request, n_before):
+        """One of the ~bodies messages since the call started carries the requested
+        state, up to one publish period (plus a step) of motion after it was set."""
+        body = request['body']
+        pose = request.get('pose') or {}
+        twist = request.get('twist') or {}
+        position = get3(pose, 'position')
+        o = pose.get('orientation') or {}
+        q = [float(o.get(c, 0.0)) for c in 'xyzw']
+        qn = norm(q)
+        q = [c / qn for c in q]
+        v, w = get3(twist, 'linear'), get3(twist, 'angular')
+        slack = 0.02   # s: a publish period (10 ms) and a step, with margin
+
+        def errors(s):
+            got_q = [s.pose.orientation.x, s.pose.orientation.y, s.pose.orientation.z,
+                     s.pose.orientation.w]
+            dot = abs(sum(a * b for a, b in zip(q, got_q)))
+            return (
+                ('position', norm(sub(vec(s.pose.position), position)), norm(v) * slack + 1e-6),
+                ('orientation (angle)', 2.0 * math.acos(min(1.0, dot)), norm(w) * slack + 1e-6),
+                ('linear velocity', norm(sub(vec(s.twist.linear), v)), 1e-6),
+                ('angular velocity', norm(sub(vec(s.twist.angular), w)), 0.02 * norm(w) + 1e-6))
+
+        msgs = self.wait_new(n_before, 1, 5.0, where)
+        time.sleep(0.1)
+        msgs = self.since(n_before)
+        report = []
+        for msg in msgs:
+            states = [b for b in msg.bodies if b.name == body]
+            self.assertEqual(len(states), 1, '%s: body %s not in ~bodies' % (where, body))
+            errs = errors(states[0])
+            if all(err <= tol for _, err, tol in errs):
+                return
+            report.append('%s: %s' % (msg.header.stamp, ', '.join(
+                '%s off by %.3g (tol %.3g)' % e for e in errs)))
+        self.fail('%s: no ~bodies message after the call has body %s in the requested state; '
+                  'last ones:\n%s' % (where, body, '\n'.join(report[-5:])))
+
+
+if __name__ == '__main__':
+    rostest.rosrun(PKG, 'readme_examples', ReadmeExamples)
