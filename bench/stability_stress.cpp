@@ -60,6 +60,8 @@
 #include "rigid_body_sim/core/reference/torque_free.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/world.h"
+#include "stress_cases.h"
+#include "test_bodies.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -78,60 +80,18 @@ long Steps(double full) { return std::max(1L, std::lround(full * g_scale)); }
 
 // ---- bodies ----------------------------------------------------------------
 
-// Four unit masses at ±1 e_x, ±√½ e_y: Ī = diag(1, 2, 3) kg m².
-BodyModel Diag123Body() {
-  const double b = std::sqrt(0.5);
-  return BodyModel("diag123", {{1.0, {1, 0, 0}}, {1.0, {-1, 0, 0}}, {1.0, {0, b, 0}}, {1.0, {0, -b, 0}}});
-}
 
-// 0.5 kg at ±1 m on x, 1 g at ±2 cm on y and ±1 cm on z:
-// Ī = diag(1e-6, 1.0000002, 1.0000008) kg m², λ1/λ3 = 1e-6, three distinct moments.
-BodyModel NeedleBody() {
-  return BodyModel("needle", {{0.5, {1, 0, 0}}, {0.5, {-1, 0, 0}},
-                              {1e-3, {0, 0.02, 0}}, {1e-3, {0, -0.02, 0}},
-                              {1e-3, {0, 0, 0.01}}, {1e-3, {0, 0, -0.01}}});
-}
 
-// 0.5 kg at ±1 m on x, 50 g at ±√1e-3 m on y: planar, Ī = diag(1e-4, 1, 1.0001).
-BodyModel NearRodBody() {
-  const double b = std::sqrt(1e-3);
-  return BodyModel("near_rod", {{0.5, {1, 0, 0}}, {0.5, {-1, 0, 0}}, {0.05, {0, b, 0}}, {0.05, {0, -b, 0}}});
-}
 
-// The exact collinear rod along z (λ = (0, 0.5, 0.5)) and a single particle.
-BodyModel RodBody() {
-  return BodyModel("rod", {{1.0, {0, 0, -0.5}}, {2.0, {0, 0, 0}}, {1.0, {0, 0, 0.5}}});
-}
-BodyModel PointBody() { return BodyModel("point", {{2.0, {0.3, -0.1, 0.2}}}); }
 
 BodyModel BoxBody() { return BodyModel("box", MakeBox(1.0, {0.1, 0.2, 0.3}, 2)); }
 
-// A generic initial attitude, so that no axis starts aligned with the world's.
-const Quaterniond kTilt(Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()));
 
 // ---- measurements ------------------------------------------------------------
 
-bool Finite(const BodyState& s) {
-  return s.position.allFinite() && s.orientation.coeffs().allFinite() &&
-         s.linear_momentum.allFinite() && s.angular_momentum.allFinite() &&
-         std::abs(s.orientation.norm() - 1.0) < 1e-9;
-}
 
-double OrthonormalityError(const BodyState& s) {
-  const Matrix3d a = s.orientation.toRotationMatrix();
-  return (a.transpose() * a - Matrix3d::Identity()).norm();
-}
 
-double AngleBetween(const Quaterniond& a, const Quaterniond& b) {
-  return 2.0 * std::asin(std::min(1.0, (a.conjugate() * b).vec().norm()));
-}
 
-// Period of Π(t) of the torque-free motion from `s` (inf when Π is constant).
-double MomentumPeriod(const BodyModel& m, const BodyState& s) {
-  const Quaterniond principal = s.orientation * m.principal_axes();
-  const TorqueFreeMotion motion(m.principal_moments(), principal.conjugate() * s.angular_momentum, principal);
-  return motion.period();
-}
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -175,7 +135,7 @@ class Csv {
 struct Table {
   std::string title;
   std::vector<std::string> header;
-  std::vector<std::vector<std::string>> rows;
+  std::vector<std::vector<std::string>> rows = {};
   void Print() const {
     std::printf("\n### %s\n\n|", title.c_str());
     for (const auto& h : header) std::printf(" %s |", h.c_str());
@@ -205,7 +165,7 @@ struct SpinRun {
 SpinRun RunSpin(const Integrator& integrator, const BodyModel& body, const BodyState& initial,
                 double min_duration_s, int periods) {
   SpinRun run;
-  const double period = MomentumPeriod(body, initial);
+  const double period = test::MomentumPeriod(body, initial);
   double duration = min_duration_s;
   if (std::isfinite(period)) duration = std::max(duration, periods * period);
   run.steps = std::lround(duration / kDt);
@@ -214,7 +174,7 @@ SpinRun RunSpin(const Integrator& integrator, const BodyModel& body, const BodyS
   BodyState s = initial;
   for (long n = 1; n <= run.steps; ++n) {
     integrator.Step(body, nullptr, kDt, &s);
-    if (!Finite(s)) {
+    if (!test::Finite(s)) {
       run.finite = false;
       run.energy_1s = run.energy_first = run.energy_second = kInf;
       return run;
@@ -224,7 +184,7 @@ SpinRun RunSpin(const Integrator& integrator, const BodyModel& body, const BodyS
     double& half = 2 * n <= run.steps ? run.energy_first : run.energy_second;
     half = std::max(half, error);
     if (n == one_second) {
-      run.angle_1s = AngleBetween(ExactFreeBodyState(body, initial, n * kDt).orientation, s.orientation);
+      run.angle_1s = test::AngleBetween(ExactFreeBodyState(body, initial, n * kDt).orientation, s.orientation);
     }
   }
   return run;
@@ -241,7 +201,7 @@ struct SpinSummary {
 
 SpinSummary SpinSweep(const std::string& name, Csv* csv, Table* detail) {
   const auto integrator = MakeIntegrator(name);
-  const BodyModel body = Diag123Body();
+  const BodyModel body = test::Diag123Body();
   const Vector3d directions[2] = {Vector3d(1, 1, 1).normalized(), Vector3d(0.01, 1, 0.01).normalized()};
   const char* direction_names[2] = {"generic", "near_axis2"};
   SpinSummary summary;
@@ -252,8 +212,8 @@ SpinSummary SpinSweep(const std::string& name, Csv* csv, Table* detail) {
     const double h_omega = kDt * omega;
     double worst_1s = 0.0;
     for (int d = 0; d < 2; ++d) {
-      const BodyState initial = StateFromTwist(body, Vector3d::Zero(), kTilt, Vector3d::Zero(),
-                                               kTilt * (omega * directions[d]));
+      const BodyState initial = StateFromTwist(body, Vector3d::Zero(), test::kTilt, Vector3d::Zero(),
+                                               test::kTilt * (omega * directions[d]));
       // --quick: fewer periods, never shorter than 1 s.
       const SpinRun run = RunSpin(*integrator, body, initial, 1.0, g_scale < 1.0 ? 2 : 10);
       const std::string c = std::string(direction_names[d]) + "_hw=" + Num(h_omega, 3);
@@ -304,44 +264,17 @@ FreeCaseResult RunFree(const Integrator& integrator, const BodyModel& body, cons
   BodyState s = initial;
   for (long n = 1; n <= steps; ++n) {
     integrator.Step(body, nullptr, kDt, &s);
-    if (!Finite(s)) {
+    if (!test::Finite(s)) {
       r.finite = false;
       r.energy = kInf;
       return r;
     }
     r.energy = std::max(r.energy, std::abs(KineticEnergy(body, s) / e0 - 1.0));
   }
-  r.angle = AngleBetween(ExactFreeBodyState(body, initial, steps * kDt).orientation, s.orientation);
+  r.angle = test::AngleBetween(ExactFreeBodyState(body, initial, steps * kDt).orientation, s.orientation);
   return r;
 }
 
-// Random particle forces and couples on the bodies of `world`, world or body
-// axes, redrawn (table cleared) by the caller every `period` steps.
-void DrawWrenches(std::mt19937_64* rng, double max_force, double max_couple, World* world) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  // Uniform direction, magnitude uniform in [0, max_norm]. (The return type
-  // must be a Vector3d: an Eigen expression would dangle on v.)
-  auto random_vector = [&](double max_norm) -> Vector3d {
-    const Vector3d v(normal(*rng), normal(*rng), normal(*rng));
-    return (max_norm * unit(*rng) / v.norm()) * v;
-  };
-  world->wrenches().Clear();
-  for (std::size_t b = 0; b < world->size(); ++b) {
-    const int count = 1 + static_cast<int>(3.0 * unit(*rng)) % 3;
-    for (int i = 0; i < count; ++i) {
-      ParticleWrench w;
-      w.body = b;
-      w.particle = std::min(world->model(b).particle_count() - 1,
-                            static_cast<std::size_t>(unit(*rng) * world->model(b).particle_count()));
-      w.axes = unit(*rng) < 0.5 ? WrenchAxes::kWorld : WrenchAxes::kBody;
-      w.force = random_vector(max_force);
-      if (unit(*rng) < 0.5) w.couple = random_vector(max_couple);
-      w.start_s = world->time();
-      world->wrenches().Hold(w);
-    }
-  }
-}
 
 // How far L leaves the range of I for a rank-deficient body (0 when full rank):
 // max(|L·n|/|L| over null axes n, |I ω − L|/|L|); for a single particle |L| itself.
@@ -379,16 +312,16 @@ LoadedDegenerate RunLoadedDegenerate(const std::string& name, long steps, std::u
   options.dt_s = kDt;
   options.gravity = {0, 0, -9.81};
   std::vector<BodyState> states(2);
-  states[0].orientation = kTilt;
-  states[0].angular_momentum = kTilt * Vector3d(0.0, 0.3, -0.2);
+  states[0].orientation = test::kTilt;
+  states[0].angular_momentum = test::kTilt * Vector3d(0.0, 0.3, -0.2);
   states[1].linear_momentum = {1.0, 0.0, 0.0};
-  World world({RodBody(), PointBody()}, states, options);
+  World world({test::RodBody(), test::PointBody()}, states, options);
   std::mt19937_64 rng(seed);
   LoadedDegenerate r;
   for (long n = 0; n < steps; ++n) {
-    if (n % 100 == 0) DrawWrenches(&rng, 100.0, 10.0, &world);
+    if (n % 100 == 0) test::DrawWrenches(&rng, 100.0, 10.0, &world);
     world.Step();
-    if (!Finite(world.state(0)) || !Finite(world.state(1))) {
+    if (!test::Finite(world.state(0)) || !test::Finite(world.state(1))) {
       r.finite = false;
       break;
     }
@@ -424,12 +357,12 @@ LongRun RunLong(const Integrator& integrator, const BodyModel& body, const BodyS
     const auto start = std::chrono::steady_clock::now();
     for (long i = 0; i < kBlock; ++i) integrator.Step(body, nullptr, kDt, &s);
     stepping += Seconds(start);
-    if (!Finite(s)) {
+    if (!test::Finite(s)) {
       r.finite = false;
       r.energy_second = r.energy_final = kInf;
       break;
     }
-    r.orthonormality = std::max(r.orthonormality, OrthonormalityError(s));
+    r.orthonormality = std::max(r.orthonormality, test::OrthonormalityError(s));
     r.l_drift = std::max(r.l_drift, std::abs(s.angular_momentum.norm() / l0 - 1.0));
     r.pi_drift = std::max(r.pi_drift, std::abs((s.orientation.conjugate() * s.angular_momentum).norm() / l0 - 1.0));
     const double error = std::abs(KineticEnergy(body, s) / e0 - 1.0);
@@ -457,10 +390,10 @@ struct RandomRun {
 };
 
 World RandomWorld(const std::string& name) {
-  std::vector<BodyModel> models = {Diag123Body(), BoxBody(), RodBody(), PointBody(), NearRodBody(), NeedleBody()};
+  std::vector<BodyModel> models = {test::Diag123Body(), BoxBody(), test::RodBody(), test::PointBody(), test::NearRodBody(), test::NeedleBody()};
   std::vector<BodyState> states(models.size());
   for (std::size_t i = 0; i < models.size(); ++i) {
-    states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), kTilt, Vector3d(0, 0.1, 0), Vector3d(0.3, -1.0, 2.0));
+    states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), test::kTilt, Vector3d(0, 0.1, 0), Vector3d(0.3, -1.0, 2.0));
   }
   WorldOptions options;
   options.integrator = name;
@@ -482,13 +415,13 @@ RandomRun RunRandom(const std::string& name, long steps, std::uint64_t seed) {
   std::vector<double> h_omega(world.size(), 0.0);
   double stepping = 0.0;
   for (long n = 0; n < steps; ++n) {
-    if (n % 100 == 0) DrawWrenches(&rng, 100.0, 10.0, &world);
+    if (n % 100 == 0) test::DrawWrenches(&rng, 100.0, 10.0, &world);
     const auto start = std::chrono::steady_clock::now();
     world.Step();
     stepping += Seconds(start);
     for (std::size_t b = 0; b < world.size(); ++b) {
       const BodyState& s = world.state(b);
-      if (!Finite(s)) {
+      if (!test::Finite(s)) {
         r.finite = false;
         r.first_bad_step = n;
         break;
@@ -576,16 +509,16 @@ int Main(int argc, char** argv) {
     BodyModel body;
     BodyState initial;
   };
-  const BodyModel needle = NeedleBody();
-  const BodyModel near_rod = NearRodBody();
+  const BodyModel needle = test::NeedleBody();
+  const BodyModel near_rod = test::NearRodBody();
   const Vector3d generic = Vector3d(1, 1, 1).normalized();
   auto from_omega = [&](const BodyModel& m, const Vector3d& w) {
-    return StateFromTwist(m, Vector3d::Zero(), kTilt, Vector3d::Zero(), kTilt * w);
+    return StateFromTwist(m, Vector3d::Zero(), test::kTilt, Vector3d::Zero(), test::kTilt * w);
   };
   auto from_momentum = [&](const Vector3d& l) {
     BodyState s;
-    s.orientation = kTilt;
-    s.angular_momentum = kTilt * l;
+    s.orientation = test::kTilt;
+    s.angular_momentum = test::kTilt * l;
     return s;
   };
   const std::vector<ExtremeCase> cases = {
@@ -633,10 +566,10 @@ int Main(int argc, char** argv) {
     const char* label;
     BodyState initial;
   };
-  const BodyModel diag123 = Diag123Body();
+  const BodyModel diag123 = test::Diag123Body();
   BodyState separatrix;
-  separatrix.orientation = kTilt;
-  separatrix.angular_momentum = kTilt * Vector3d(1.0, 40.0, 3.0);  // ω0 = (1, 20, 1), h|ω| = 0.02
+  separatrix.orientation = test::kTilt;
+  separatrix.angular_momentum = test::kTilt * Vector3d(1.0, 40.0, 3.0);  // ω0 = (1, 20, 1), h|ω| = 0.02
   const std::vector<LongCase> long_cases = {
       {"near separatrix, ω0 = (1, 20, 1)", separatrix},
   };

@@ -6,6 +6,8 @@ add_executable(work_precision bench/work_precision.cpp bench/scene_load.cpp)
 target_link_libraries(work_precision rigid_body_sim_bench_peers rigid_body_sim_core)
 
 add_executable(stability_stress bench/stability_stress.cpp)
+# The stress bodies and loads are the test suite's (test/core/stress_cases.h).
+target_include_directories(stability_stress PRIVATE test/core)
 target_link_libraries(stability_stress rigid_body_sim_core)
 
 add_executable(throughput_bench bench/throughput_bench.cpp)

@@ -99,11 +99,22 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       conservation_(world_),
       private_nh_(private_nh),
       diagnostics_(ros::NodeHandle(), private_nh) {
-  for (const core::BodyModel& model : world_.models()) {
-    pose_publishers_.push_back(
-        private_nh_.advertise<geometry_msgs::PoseStamped>(model.name() + "/pose", kStateQueueSize));
+  // Subscriber counts come from connect/disconnect callbacks (run by this
+  // thread's callback queue): roscpp's getNumSubscribers() searches every
+  // advertised topic, so asking it twice per body per cycle costs O(bodies²).
+  pose_subscribers_.assign(world_.size(), 0);
+  twist_subscribers_.assign(world_.size(), 0);
+  const auto count = [](int* subscribers, int change) {
+    return [subscribers, change](const ros::SingleSubscriberPublisher&) { *subscribers += change; };
+  };
+  for (std::size_t body = 0; body < world_.size(); ++body) {
+    const std::string& name = world_.model(body).name();
+    pose_publishers_.push_back(private_nh_.advertise<geometry_msgs::PoseStamped>(
+        name + "/pose", kStateQueueSize, count(&pose_subscribers_[body], 1),
+        count(&pose_subscribers_[body], -1)));
     twist_publishers_.push_back(private_nh_.advertise<geometry_msgs::TwistStamped>(
-        model.name() + "/twist", kStateQueueSize));
+        name + "/twist", kStateQueueSize, count(&twist_subscribers_[body], 1),
+        count(&twist_subscribers_[body], -1)));
   }
   bodies_publisher_ = private_nh_.advertise<BodyStateArray>("bodies", kStateQueueSize);
   particles_publisher_ =
@@ -224,14 +235,14 @@ void SimulationNode::Publish() {
     tf_broadcaster_.sendTransform(transforms);  // one TFMessage for all bodies
   }
   for (std::size_t body = 0; body < world_.size(); ++body) {
-    if (pose_publishers_[body].getNumSubscribers() > 0) {
+    if (pose_subscribers_[body] > 0) {
       geometry_msgs::PoseStamped pose;
       pose.header.stamp = stamp;
       pose.header.frame_id = settings_.world_frame;
       pose.pose = ToPoseMsg(world_.state(body));
       pose_publishers_[body].publish(pose);
     }
-    if (twist_publishers_[body].getNumSubscribers() > 0) {
+    if (twist_subscribers_[body] > 0) {
       geometry_msgs::TwistStamped twist;
       twist.header.stamp = stamp;
       twist.header.frame_id = settings_.world_frame;

@@ -30,6 +30,7 @@
 #include "rigid_body_sim/core/reference/torque_free.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/world.h"
+#include "stress_cases.h"
 #include "test_bodies.h"
 
 namespace rigid_body_sim::core {
@@ -41,8 +42,6 @@ using Eigen::Vector3d;
 
 constexpr double kDt = 1e-3;
 
-// A generic initial attitude, so that no axis starts aligned with the world's.
-const Quaterniond kTilt(Eigen::AngleAxisd(0.7, Vector3d(1, 2, 3).normalized()));
 
 bool IsSymplecticSplitting(const std::string& name) {
   return name == "splitting" || name == "splitting4" || name == "casimir_splitting" ||
@@ -50,51 +49,21 @@ bool IsSymplecticSplitting(const std::string& name) {
 }
 bool IsExact(const std::string& name) { return name == "exact_free"; }
 
-// Finite everywhere, and q still a unit quaternion (every scheme normalises q
-// each step, so 1e-9 only catches a scheme that stopped doing so or overflowed).
-bool Finite(const BodyState& s) {
-  return s.position.allFinite() && s.orientation.coeffs().allFinite() &&
-         s.linear_momentum.allFinite() && s.angular_momentum.allFinite() &&
-         std::abs(s.orientation.norm() - 1.0) < 1e-9;
-}
 
-double OrthonormalityError(const BodyState& s) {
-  const Matrix3d a = s.orientation.toRotationMatrix();
-  return (a.transpose() * a - Matrix3d::Identity()).norm();
-}
 
-// 0.5 kg at ±1 m on x, 1 g at ±2 cm on y and ±1 cm on z:
-// Ī = diag(1e-6, 1.0000002, 1.0000008) kg m², λ1/λ3 = 1e-6, three distinct moments.
-BodyModel NeedleBody() {
-  return BodyModel("needle", {{0.5, {1, 0, 0}}, {0.5, {-1, 0, 0}},
-                              {1e-3, {0, 0.02, 0}}, {1e-3, {0, -0.02, 0}},
-                              {1e-3, {0, 0, 0.01}}, {1e-3, {0, 0, -0.01}}});
-}
 
-// 0.5 kg at ±1 m on x, 50 g at ±√1e-3 m on y: planar, Ī = diag(1e-4, 1, 1.0001).
-BodyModel NearRodBody() {
-  const double b = std::sqrt(1e-3);
-  return BodyModel("near_rod", {{0.5, {1, 0, 0}}, {0.5, {-1, 0, 0}}, {0.05, {0, b, 0}}, {0.05, {0, -b, 0}}});
-}
 
 BodyState FromBodyOmega(const BodyModel& body, const Vector3d& omega_body) {
-  return StateFromTwist(body, Vector3d::Zero(), kTilt, Vector3d::Zero(), kTilt * omega_body);
+  return StateFromTwist(body, Vector3d::Zero(), test::kTilt, Vector3d::Zero(), test::kTilt * omega_body);
 }
 
 BodyState FromBodyMomentum(const Vector3d& momentum_body) {
   BodyState s;
-  s.orientation = kTilt;
-  s.angular_momentum = kTilt * momentum_body;
+  s.orientation = test::kTilt;
+  s.angular_momentum = test::kTilt * momentum_body;
   return s;
 }
 
-// Period of Π(t) of the torque-free motion from `s` (inf when Π is constant).
-double MomentumPeriod(const BodyModel& body, const BodyState& s) {
-  const Quaterniond principal = s.orientation * body.principal_axes();
-  const TorqueFreeMotion motion(body.principal_moments(), principal.conjugate() * s.angular_momentum,
-                                principal);
-  return motion.period();
-}
 
 // The energy bound of a symplectic splitting of order p. It conserves a
 // modified Hamiltonian H̃ = H + h^p H_p + …, H_p made of nested Poisson
@@ -122,14 +91,14 @@ struct SpinRun {
 // Torque-free from `initial` for max(1 s, `periods` periods of Π(t)).
 SpinRun RunSpin(const Integrator& integrator, const BodyModel& body, const BodyState& initial, int periods) {
   SpinRun run;
-  const double period = MomentumPeriod(body, initial);
+  const double period = test::MomentumPeriod(body, initial);
   const double duration = std::isfinite(period) ? std::max(1.0, periods * period) : 1.0;
   run.steps = std::lround(duration / kDt);
   const double e0 = KineticEnergy(body, initial);
   BodyState s = initial;
   for (long n = 1; n <= run.steps; ++n) {
     integrator.Step(body, nullptr, kDt, &s);
-    if (!Finite(s)) {
+    if (!test::Finite(s)) {
       run.finite = false;
       return run;
     }
@@ -195,8 +164,8 @@ TEST(Stress, NeedleAndNearRodStayFinite) {
   // generic ω (h|ω| = 0.01) and with a generic L, where ω1 = Π1/λ1 makes
   // h|ω| ≈ 580 (needle) and ≈ 5.8 (near rod): every scheme stays finite and
   // orthonormal; exact_free matches the closed form; the errors are printed.
-  const BodyModel needle = NeedleBody();
-  const BodyModel near_rod = NearRodBody();
+  const BodyModel needle = test::NeedleBody();
+  const BodyModel near_rod = test::NearRodBody();
   ASSERT_TRUE(needle.is_full_rank());
   ASSERT_NEAR(needle.principal_moments()[0] / needle.principal_moments()[2], 1e-6, 1e-9);
   ASSERT_NEAR(near_rod.principal_moments()[0], 1e-4, 1e-15);
@@ -220,10 +189,10 @@ TEST(Stress, NeedleAndNearRodStayFinite) {
       double energy = 0.0;
       for (int n = 0; n < 1000; ++n) {
         integrator->Step(*c.body, nullptr, kDt, &s);
-        ASSERT_TRUE(Finite(s)) << name << ", " << c.label << ", step " << n;
+        ASSERT_TRUE(test::Finite(s)) << name << ", " << c.label << ", step " << n;
         energy = std::max(energy, std::abs(KineticEnergy(*c.body, s) / e0 - 1.0));
       }
-      EXPECT_LE(OrthonormalityError(s), 1e-12) << name << ", " << c.label;
+      EXPECT_LE(test::OrthonormalityError(s), 1e-12) << name << ", " << c.label;
       const double angle =
           test::AngleBetween(ExactFreeBodyState(*c.body, c.initial, 1.0).orientation, s.orientation);
       std::printf("  %-18s %-20s h|ω| %-8.3g ΔE/E %.2e  orientation err 1 s %.2e rad\n", name.c_str(), c.label,
@@ -240,33 +209,6 @@ TEST(Stress, NeedleAndNearRodStayFinite) {
   }
 }
 
-// Random particle forces and couples on every body of `world`, world or body
-// axes, 1–3 per body; the table is cleared first.
-void DrawWrenches(std::mt19937_64* rng, double max_force, double max_couple, World* world) {
-  std::uniform_real_distribution<double> unit(0.0, 1.0);
-  std::normal_distribution<double> normal(0.0, 1.0);
-  // Uniform direction, magnitude uniform in [0, max_norm]. (The return type
-  // must be a Vector3d: an Eigen expression would dangle on v.)
-  auto random_vector = [&](double max_norm) -> Vector3d {
-    const Vector3d v(normal(*rng), normal(*rng), normal(*rng));
-    return (max_norm * unit(*rng) / v.norm()) * v;
-  };
-  world->wrenches().Clear();
-  for (std::size_t b = 0; b < world->size(); ++b) {
-    const int count = 1 + static_cast<int>(3.0 * unit(*rng)) % 3;
-    for (int i = 0; i < count; ++i) {
-      ParticleWrench w;
-      w.body = b;
-      w.particle = std::min(world->model(b).particle_count() - 1,
-                            static_cast<std::size_t>(unit(*rng) * world->model(b).particle_count()));
-      w.axes = unit(*rng) < 0.5 ? WrenchAxes::kWorld : WrenchAxes::kBody;
-      w.force = random_vector(max_force);
-      if (unit(*rng) < 0.5) w.couple = random_vector(max_couple);
-      w.start_s = world->time();
-      ASSERT_EQ(world->wrenches().Hold(w), WrenchRejection::kAccepted);
-    }
-  }
-}
 
 // L in the range of I for the rod (null axis = its principal axis 1) and the
 // particle (L = 0): World::Step projects L after every step, so what is left
@@ -299,17 +241,19 @@ TEST(Stress, RodAndParticleUnderForcesAndCouplesKeepLInTheRangeOfI) {
     options.dt_s = kDt;
     options.gravity = {0, 0, -9.81};
     std::vector<BodyState> states(2);
-    states[0].orientation = kTilt;
-    states[0].angular_momentum = kTilt * Vector3d(0.0, 0.3, -0.2);
+    states[0].orientation = test::kTilt;
+    states[0].angular_momentum = test::kTilt * Vector3d(0.0, 0.3, -0.2);
     states[1].linear_momentum = {1.0, 0.0, 0.0};
     World world({test::RodBody(), test::PointBody()}, states, options);
     std::mt19937_64 rng(7);
     for (int n = 0; n < 20000; ++n) {
-      if (n % 100 == 0) DrawWrenches(&rng, 100.0, 10.0, &world);
+      if (n % 100 == 0) {
+        ASSERT_TRUE(test::DrawWrenches(&rng, 100.0, 10.0, &world));
+      }
       world.Step();
       for (std::size_t b = 0; b < 2; ++b) {
         const std::string where = name + ", " + world.model(b).name() + ", step " + std::to_string(n);
-        ASSERT_TRUE(Finite(world.state(b))) << where;
+        ASSERT_TRUE(test::Finite(world.state(b))) << where;
         // |L| of the rod random-walks to ~1e2 kg m²/s, |ω| <= |L|/0.5 stays far
         // below π/h: nothing here may be frozen.
         ASSERT_EQ(world.fault(b), BodyFault::kNone) << where << ": " << ToString(world.fault(b));
@@ -344,8 +288,8 @@ TEST(Stress, MillionTorqueFreeSteps) {
     const auto start = std::chrono::steady_clock::now();
     for (long n = kEvery; n <= steps; n += kEvery) {
       for (long i = 0; i < kEvery; ++i) integrator->Step(body, nullptr, kDt, &s);
-      ASSERT_TRUE(Finite(s)) << name << ", step " << n;
-      orthonormality = std::max(orthonormality, OrthonormalityError(s));
+      ASSERT_TRUE(test::Finite(s)) << name << ", step " << n;
+      orthonormality = std::max(orthonormality, test::OrthonormalityError(s));
       l_drift = std::max(l_drift, std::abs(s.angular_momentum.norm() / l0 - 1.0));
       pi_drift = std::max(pi_drift, std::abs((s.orientation.conjugate() * s.angular_momentum).norm() / l0 - 1.0));
       const double error = std::abs(KineticEnergy(body, s) / e0 - 1.0);
@@ -387,12 +331,12 @@ TEST(Stress, RandomParticleForcesKeepEveryStateFinite) {
   // diag123, rod and particle (λ_min of their moving axes >= 0.5) never get
   // near |ω|h = π and must never be frozen.
   std::vector<BodyModel> models = {test::Diag123Body(), BodyModel("box", MakeBox(1.0, {0.1, 0.2, 0.3}, 2)),
-                                   test::RodBody(), test::PointBody(), NeedleBody()};
+                                   test::RodBody(), test::PointBody(), test::NeedleBody()};
   const std::vector<std::string> never_frozen = {"diag123", "rod", "point"};
   for (const std::string& name : IntegratorNames()) {
     std::vector<BodyState> states(models.size());
     for (std::size_t i = 0; i < models.size(); ++i) {
-      states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), kTilt, Vector3d(0, 0.1, 0),
+      states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), test::kTilt, Vector3d(0, 0.1, 0),
                                  Vector3d(0.3, -1.0, 2.0));
     }
     WorldOptions options;
@@ -403,11 +347,13 @@ TEST(Stress, RandomParticleForcesKeepEveryStateFinite) {
     std::mt19937_64 rng(1);
     double max_h_omega = 0.0;
     for (long n = 0; n < 100000; ++n) {
-      if (n % 100 == 0) DrawWrenches(&rng, 100.0, 10.0, &world);
+      if (n % 100 == 0) {
+        ASSERT_TRUE(test::DrawWrenches(&rng, 100.0, 10.0, &world));
+      }
       world.Step();
       for (std::size_t b = 0; b < world.size(); ++b) {
         const BodyState& s = world.state(b);
-        ASSERT_TRUE(Finite(s)) << name << ", " << world.model(b).name() << ", step " << n;
+        ASSERT_TRUE(test::Finite(s)) << name << ", " << world.model(b).name() << ", step " << n;
         if (world.fault(b) == BodyFault::kNone) {
           max_h_omega = std::max(max_h_omega, kDt * AngularVelocity(world.model(b), s).norm());
         }

@@ -89,6 +89,8 @@ class SimulationNode {
   ros::NodeHandle private_nh_;
   std::vector<ros::Publisher> pose_publishers_;
   std::vector<ros::Publisher> twist_publishers_;
+  std::vector<int> pose_subscribers_;   // per body, kept by connect/disconnect callbacks
+  std::vector<int> twist_subscribers_;
   ros::Publisher bodies_publisher_;
   ros::Publisher particles_publisher_;
   ros::Publisher clock_publisher_;

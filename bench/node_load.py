@@ -1,0 +1,910 @@
+#!/usr/bin/python3
+"""The node under load: rigid_body_sim_node on generated scenes.
+
+Starts its own ROS master on a private port, runs rigid_body_sim_node (pinned
+to one core with taskset) on scenes of N generated bodies (shape: box,
+resolution 2: 8 particles each) and measures
+
+  1. capacity: the largest N stepped at rate 1000 with zero overruns
+     (publish_rate 10, nobody subscribed to /tf or ~bodies), from the node's
+     own /diagnostics status "simulation" (keys overruns, steps, sim_time_s,
+     step_time_mean_us, step_time_max_us, real_time_factor_achieved);
+  2. CPU use of the node (/proc/<pid>/stat utime+stime over a window) at 100
+     and 1000 bodies with /tf and ~bodies at 100 Hz, both subscribed;
+  3. particle wrenches per second taken in through ~particle_wrenches while
+     the rate holds (arrays of K entries at R Hz, pre-serialised once);
+  4. latency from a ParticleWrench (zero stamp) to the first ~bodies message
+     whose linear momentum reflects it (wall clock, median of >= 20 trials).
+
+Writes a Markdown report (also printed) to bench/results/node_load.md and one
+CSV row per run to bench/results/node_load.csv.
+
+  bench/node_load.py [--quick] [--workspace PATH] [--port 11395] [--out DIR]
+
+The script re-executes itself with PATH/devel/setup.bash sourced (default
+workspace: build_ws in the checkout). It and the master stay on core 0, the
+node runs on core 1 (--node-cpu). Everything started is stopped at the end.
+"""
+
+import argparse
+import csv
+import io
+import math
+import os
+import random
+import shlex
+import signal
+import statistics
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ENV_MARK = "RBS_NODE_LOAD_WS"
+NODE_NAME = "rigid_body_sim"
+NS = "/" + NODE_NAME
+
+
+def parse_args():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("--quick", action="store_true", help="smaller scan, under a minute")
+    parser.add_argument("--workspace", default=os.path.join(REPO, "build_ws"),
+                        help="catkin workspace whose devel/setup.bash is sourced (default: build_ws in the repo)")
+    parser.add_argument("--port", type=int, default=11395, help="port of the private ROS master")
+    parser.add_argument("--node-cpu", type=int, default=1, help="core the node is pinned to (taskset -c)")
+    parser.add_argument("--bench-cpu", type=int, default=0, help="core of this script and the master")
+    parser.add_argument("--sched", choices=["normal", "nice", "fifo"], default=None,
+                        help="node scheduling: normal; nice = nice -n -20 (also this script and the master); "
+                             "fifo = chrt -f 10 (the script and master: nice -20). Default: fifo when root, "
+                             "else normal")
+    parser.add_argument("--out", default=os.path.join(REPO, "bench", "results"),
+                        help="directory for node_load.md and node_load.csv")
+    return parser.parse_args()
+
+
+def reexec_in_workspace(args):
+    """Runs this script again with the workspace's environment and a private master."""
+    ws = os.path.abspath(args.workspace)
+    if os.environ.get(ENV_MARK) == ws:
+        return
+    setup = os.path.join(ws, "devel", "setup.bash")
+    if not os.path.exists(setup):
+        sys.exit("no %s: build first, e.g. RBS_WS=%s bash scripts/build.sh" % (setup, ws))
+    env = dict(os.environ)
+    env[ENV_MARK] = ws
+    env["PATH"] = "/usr/bin:" + env.get("PATH", "")
+    env["ROS_MASTER_URI"] = "http://127.0.0.1:%d" % args.port
+    env["ROS_IP"] = "127.0.0.1"
+    env.pop("ROS_HOSTNAME", None)
+    ros_home = tempfile.mkdtemp(prefix="node_load_ros_")
+    env["ROS_HOME"] = ros_home
+    env["ROS_LOG_DIR"] = os.path.join(ros_home, "log")
+    command = "source %s && exec /usr/bin/python3 %s %s" % (
+        shlex.quote(setup), shlex.quote(os.path.abspath(__file__)),
+        " ".join(shlex.quote(a) for a in sys.argv[1:]))
+    os.execve("/bin/bash", ["/bin/bash", "-c", command], env)
+
+
+ARGS = parse_args()
+reexec_in_workspace(ARGS)
+
+# From here on: the workspace's environment, ROS's Python.
+os.sched_setaffinity(0, {ARGS.bench_cpu})  # threads started later inherit it
+if ARGS.sched is None:
+    ARGS.sched = "fifo" if os.geteuid() == 0 else "normal"
+if ARGS.sched != "normal":
+    try:
+        os.setpriority(os.PRIO_PROCESS, 0, -20)  # this thread; threads started later inherit it
+    except PermissionError:
+        sys.exit("--sched %s needs root (or CAP_SYS_NICE); use --sched normal" % ARGS.sched)
+NODE_PREFIX = {"normal": [], "nice": ["nice", "-n", "-20"], "fifo": ["chrt", "-f", "10"]}[ARGS.sched]
+
+import rosgraph  # noqa: E402
+import rospy  # noqa: E402
+from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
+from rigid_body_sim.msg import BodyStateArray, ParticleWrench, ParticleWrenchArray  # noqa: E402
+from std_srvs.srv import Empty  # noqa: E402
+
+CLK_TCK = os.sysconf("SC_CLK_TCK")
+T_START = time.monotonic()
+
+
+def log(text):
+    print("[%6.1f s] %s" % (time.monotonic() - T_START, text), flush=True)
+
+
+# ---------------------------------------------------------------- processes
+
+class Processes:
+    """Children started here, each in its own session; all stopped at exit."""
+
+    def __init__(self):
+        self.children = []
+
+    def start(self, argv, logfile):
+        out = open(logfile, "w")
+        proc = subprocess.Popen(argv, stdout=out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
+                                start_new_session=True)
+        out.close()
+        self.children.append(proc)
+        return proc
+
+    def stop(self, proc, grace_s=5.0):
+        if proc.poll() is None:
+            try:
+                os.killpg(proc.pid, signal.SIGINT)
+            except ProcessLookupError:
+                pass
+            try:
+                proc.wait(grace_s)
+            except subprocess.TimeoutExpired:
+                try:
+                    os.killpg(proc.pid, signal.SIGKILL)
+                except ProcessLookupError:
+                    pass
+                proc.wait()
+        if proc in self.children:
+            self.children.remove(proc)
+
+    def stop_all(self):
+        for proc in list(reversed(self.children)):
+            self.stop(proc, grace_s=3.0)
+
+
+PROCS = Processes()
+LOG_DIR = tempfile.mkdtemp(prefix="node_load_logs_")
+
+
+def start_master():
+    if rosgraph.is_master_online():
+        sys.exit("a master already answers on %s: pick another --port" % os.environ["ROS_MASTER_URI"])
+    master = PROCS.start(["taskset", "-c", str(ARGS.bench_cpu), "rosmaster", "--core", "-p", str(ARGS.port)],
+                         os.path.join(LOG_DIR, "master.log"))
+    deadline = time.monotonic() + 20
+    while not rosgraph.is_master_online():
+        if master.poll() is not None or time.monotonic() > deadline:
+            sys.exit("the master did not start (log: %s)" % LOG_DIR)
+        time.sleep(0.1)
+    return master
+
+
+def node_executable():
+    ws = os.environ[ENV_MARK]
+    path = os.path.join(ws, "devel", "lib", "rigid_body_sim", "rigid_body_sim_node")
+    if not os.access(path, os.X_OK):
+        sys.exit("no node executable at %s" % path)
+    return path
+
+
+# ------------------------------------------------------------------ /proc
+
+def proc_cpu_ticks(pid):
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return int(fields[11]) + int(fields[12])  # utime + stime (fields 14, 15)
+
+
+def core_busy_ticks(cpu):
+    with open("/proc/stat") as f:
+        for line in f:
+            if line.startswith("cpu%d " % cpu):
+                v = [int(x) for x in line.split()[1:]]
+                idle = v[3] + v[4]
+                return sum(v[:8]) - idle
+    return 0
+
+
+class CpuWindow:
+    def __init__(self, pid, cpu):
+        self.pid, self.cpu = pid, cpu
+        self.t0 = time.monotonic()
+        self.node0 = proc_cpu_ticks(pid)
+        self.core0 = core_busy_ticks(cpu)
+
+    def finish(self):
+        wall = time.monotonic() - self.t0
+        node = (proc_cpu_ticks(self.pid) - self.node0) / CLK_TCK
+        core = (core_busy_ticks(self.cpu) - self.core0) / CLK_TCK
+        return {"cpu_percent": 100.0 * node / wall,
+                "core_other_percent": max(0.0, 100.0 * (core - node) / wall)}
+
+
+# ------------------------------------------------------------- diagnostics
+
+class Diagnostics:
+    """The node's status "<node>: simulation" as received, scalar keys only."""
+
+    def __init__(self):
+        self.cond = threading.Condition()
+        self.reports = []  # (wall receive time, dict)
+        rospy.Subscriber("/diagnostics", DiagnosticArray, self._on_msg, queue_size=20)
+
+    def _on_msg(self, msg):
+        now = time.monotonic()
+        for status in msg.status:
+            if not status.name.endswith(": simulation") or NODE_NAME not in status.name:
+                continue
+            values = {"level": status.level, "message": status.message}
+            for kv in status.values:
+                if "/" in kv.key:
+                    continue  # per-body keys
+                try:
+                    values[kv.key] = float(kv.value)
+                except ValueError:
+                    values[kv.key] = kv.value
+            with self.cond:
+                self.reports.append((now, values))
+                self.cond.notify_all()
+
+    def clear(self):
+        with self.cond:
+            self.reports = []
+
+    def wait_next(self, timeout, alive=lambda: True):
+        """Waits for a report newer than the latest one seen; returns it or None."""
+        deadline = time.monotonic() + timeout
+        with self.cond:
+            count = len(self.reports)
+            while len(self.reports) == count:
+                remaining = deadline - time.monotonic()
+                if remaining <= 0 or not alive():
+                    return None
+                self.cond.wait(min(remaining, 0.5))
+            return self.reports[-1]
+
+    def since(self, t0, t1):
+        with self.cond:
+            return [r for r in self.reports if t0 < r[0] <= t1]
+
+
+# ------------------------------------------------------------------- scenes
+
+def make_scene(n_bodies, rate, publish_rate, moving=True):
+    """N boxes of 2x2x2 particles (8 each) on a grid, all turning and drifting."""
+    bodies = []
+    side = max(1, int(math.ceil(n_bodies ** (1.0 / 3.0))))
+    rng = random.Random(n_bodies)
+    for i in range(n_bodies):
+        x, y, z = i % side, (i // side) % side, i // (side * side)
+        body = {"name": "b%d" % i, "shape": "box", "mass": 1.0, "size": [0.2, 0.15, 0.1],
+                "resolution": 2, "position": [0.5 * x, 0.5 * y, 0.5 * z]}
+        if moving:
+            body["linear_velocity"] = [0.01, 0.0, 0.0]
+            body["angular_velocity"] = [rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(1, 3)]
+        bodies.append(body)
+    return {"rate": float(rate), "publish_rate": float(publish_rate), "real_time_factor": 1.0,
+            "gravity": [0.0, 0.0, 0.0], "bodies": bodies}
+
+
+class NodeRun:
+    """One rigid_body_sim_node process on a scene; a context manager."""
+
+    def __init__(self, diag, scene, label):
+        self.diag, self.scene, self.label = diag, scene, label
+        self.proc = None
+        self.startup_s = float("nan")
+        self.first = None
+
+    def alive(self):
+        return self.proc is not None and self.proc.poll() is None
+
+    def __enter__(self):
+        if rospy.has_param(NS):
+            rospy.delete_param(NS)
+        rospy.set_param(NS, self.scene)
+        self.diag.clear()
+        t0 = time.monotonic()
+        logfile = os.path.join(LOG_DIR, "node_%s.log" % self.label)
+        self.proc = PROCS.start(NODE_PREFIX + ["taskset", "-c", str(ARGS.node_cpu), node_executable(),
+                                               "__name:=" + NODE_NAME],
+                                logfile)
+        n = len(self.scene["bodies"])
+        self.first = self.diag.wait_next(60 + n / 100.0, self.alive)
+        if self.first is None:
+            PROCS.stop(self.proc)
+            with open(logfile) as f:
+                tail = f.read()[-2000:]
+            raise RuntimeError("node (%s) did not report diagnostics:\n%s" % (self.label, tail))
+        # The first report comes about one second after stepping starts.
+        self.startup_s = self.first[0] - t0
+        return self
+
+    def __exit__(self, *exc):
+        t0 = time.monotonic()
+        if ARGS.sched == "fifo" and self.alive():
+            # Back to SCHED_OTHER first: roscpp's shutdown can livelock with all its threads
+            # SCHED_FIFO on one core (seen: > 10 s at ~95 % CPU).
+            subprocess.run(["chrt", "-a", "-o", "-p", "0", str(self.proc.pid)], stdout=subprocess.DEVNULL,
+                           stderr=subprocess.DEVNULL)
+        PROCS.stop(self.proc, grace_s=5.0)
+        if time.monotonic() - t0 > 2.0:
+            log("node (%s) took %.1f s to stop (SIGKILL after 5 s)" % (self.label, time.monotonic() - t0))
+        return False
+
+    def measure(self, warmup_s, window_s):
+        """Diagnostics- and /proc-based figures over about window_s after warmup_s."""
+        time.sleep(warmup_s)
+        d0 = self.diag.wait_next(5, self.alive)
+        if d0 is None:
+            raise RuntimeError("node (%s) stopped reporting" % self.label)
+        cpu = CpuWindow(self.proc.pid, ARGS.node_cpu)
+        time.sleep(max(0.0, window_s - 1.0))
+        d1 = self.diag.wait_next(5, self.alive)
+        if d1 is None:
+            raise RuntimeError("node (%s) stopped reporting" % self.label)
+        result = cpu.finish()
+        return self.summarise(d0, d1, result)
+
+    def summarise(self, d0, d1, result):
+        (t0, v0), (t1, v1) = d0, d1
+        inside = [v for _, v in self.diag.since(t0, t1)]
+        wall = t1 - t0
+        result.update({
+            "window_s": wall,
+            "integrator": v1.get("integrator", ""),
+            "overruns": int(v1["overruns"] - v0["overruns"]),
+            "catch_up_limit_hits": int(v1.get("catch_up_limit_hits", 0) - v0.get("catch_up_limit_hits", 0)),
+            "steps": int(v1["steps"] - v0["steps"]),
+            "rtf_window": (v1["sim_time_s"] - v0["sim_time_s"]) / wall if wall > 0 else float("nan"),
+            "rtf_min": min(v["real_time_factor_achieved"] for v in inside),
+            "step_mean_us": statistics.mean(v["step_time_mean_us"] for v in inside),
+            "step_max_us": max(v["step_time_max_us"] for v in inside),
+            "rejected": v1.get("rejected_messages", 0) - v0.get("rejected_messages", 0),
+            "rejected_marker": (v1.get("rejected_particle_out_of_range", 0)
+                                - v0.get("rejected_particle_out_of_range", 0)),
+            "loadavg1": os.getloadavg()[0],
+            "startup_s": self.startup_s,
+        })
+        result["overruns_per_s"] = result["overruns"] / wall
+        return result
+
+
+# ------------------------------------------------------------------- output
+
+ROWS = []
+CSV_FIELDS = ["part", "label", "n_bodies", "rate_hz", "publish_rate_hz", "subscribers", "entries_per_msg",
+              "msgs_hz", "attempt", "window_s", "integrator", "startup_s", "overruns", "overruns_per_s",
+              "catch_up_limit_hits", "rtf_window", "rtf_min", "step_mean_us", "step_max_us", "cpu_percent",
+              "core_other_percent", "loadavg1", "tf_msgs_per_s", "bodies_msgs_per_s", "rx_mbyte_per_s",
+              "pub_msgs_per_s", "pub_busy_percent", "wrenches_sent_per_s", "wrenches_taken_per_s",
+              "latency_median_ms", "latency_p90_ms", "latency_min_ms", "latency_max_ms",
+              "stamp_lag_median_ms", "trials", "passed", "load_ok", "note"]
+
+
+def record(**row):
+    ROWS.append(row)
+    return row
+
+
+def fmt(value, digits=1):
+    if value is None or value == "":
+        return ""
+    if isinstance(value, float):
+        if math.isnan(value):
+            return "n/a"
+        return "%.*f" % (digits, value)
+    return str(value)
+
+
+def md_table(header, rows):
+    lines = ["| " + " | ".join(header) + " |", "|" + "|".join("---" for _ in header) + "|"]
+    lines += ["| " + " | ".join(fmt(c) if not isinstance(c, str) else c for c in r) + " |" for r in rows]
+    return "\n".join(lines)
+
+
+# ------------------------------------------------------- part 1: capacity
+
+NOISE_OVERRUNS_PER_S = 1.0  # above what this (virtual, shared) machine gives a one-body node
+
+
+def capacity_run(diag, n, warmup, window, attempt):
+    with NodeRun(diag, make_scene(n, 1000, 10), "capacity_%d_%d" % (n, attempt)) as run:
+        r = run.measure(warmup, window)
+    passed = r["overruns"] == 0 and r["rtf_min"] >= 0.99
+    load_ok = (r["overruns_per_s"] <= NOISE_OVERRUNS_PER_S and r["catch_up_limit_hits"] == 0
+               and r["rtf_min"] >= 0.99)
+    log("capacity N=%d: %d overruns in %.1f s, step %.1f us (max %.0f), RTF min %.3f, CPU %.0f%%, "
+        "core %d other %.0f%%, load %.2f, first report %.1f s -> %s"
+        % (n, r["overruns"], r["window_s"], r["step_mean_us"], r["step_max_us"], r["rtf_min"],
+           r["cpu_percent"], ARGS.node_cpu, r["core_other_percent"], r["loadavg1"], r["startup_s"],
+           "pass" if passed else ("pass within noise" if load_ok else "FAIL")))
+    return record(part=1, label="capacity", n_bodies=n, rate_hz=1000, publish_rate_hz=10, subscribers="none",
+                  attempt=attempt, passed=passed, load_ok=load_ok, **r)
+
+
+def part_capacity(diag, quick, budget_end):
+    """Scans N until a run fails beyond noise, then bisects. Returns
+    (largest strict pass, largest pass within noise, smallest failure beyond noise)."""
+    scan = [1, 100, 1000] if quick else [1, 100, 200, 500, 1000, 2000, 5000, 10000]
+    warmup, window = (1.0, 3.0) if quick else (3.0, 10.0)
+    strict = {}
+
+    def run_n(n):
+        row = capacity_run(diag, n, warmup, window, 1)
+        if not row["passed"] and not quick and row["load_ok"]:
+            log("capacity N=%d: overruns within noise; repeating once for a clean run" % n)
+            row2 = capacity_run(diag, n, warmup, window, 2)
+            row = row2 if row2["passed"] else row
+        strict[n] = row["passed"]
+        return row["load_ok"]
+
+    best, first_fail = None, None
+    for n in scan:
+        if time.monotonic() > budget_end and best is not None:
+            log("capacity scan stopped: time budget")
+            break
+        if run_n(n):
+            best = n
+        else:
+            first_fail = n
+            break
+    if not quick and best is not None and first_fail is not None:
+        lo, hi = best, first_fail
+        for _ in range(3):
+            if time.monotonic() > budget_end:
+                log("capacity bisection stopped: time budget")
+                break
+            mid = int(float("%.2g" % math.sqrt(lo * hi)))
+            if mid <= lo or mid >= hi:
+                break
+            if run_n(mid):
+                lo = mid
+            else:
+                hi = mid
+        best, first_fail = lo, hi
+    strict_best = max([n for n, ok in strict.items() if ok and (first_fail is None or n < first_fail)],
+                      default=None)
+    return strict_best, best, first_fail
+
+
+# ------------------------------------------------------------ part 2: CPU
+
+class RawCounter:
+    """Counts messages and bytes on a topic without deserialising them."""
+
+    def __init__(self, topic, nodelay=False):
+        self.count, self.nbytes = 0, 0
+        self.lock = threading.Lock()
+        self.sub = rospy.Subscriber(topic, rospy.AnyMsg, self._on_msg, queue_size=100, tcp_nodelay=nodelay)
+
+    def _on_msg(self, msg):
+        with self.lock:
+            self.count += 1
+            self.nbytes += len(msg._buff)
+
+    def snapshot(self):
+        with self.lock:
+            return self.count, self.nbytes
+
+    def close(self):
+        self.sub.unregister()
+
+
+def part_cpu(diag, quick):
+    warmup, window = (1.0, 3.0) if quick else (2.0, 10.0)
+    out = []
+    for n in (100, 1000):
+        tf = RawCounter("/tf")
+        bodies = RawCounter(NS + "/bodies")
+        with NodeRun(diag, make_scene(n, 1000, 100), "cpu_%d" % n) as run:
+            time.sleep(1.0)  # let the subscribers connect
+            c0, c1 = tf.snapshot(), bodies.snapshot()
+            t0 = time.monotonic()
+            r = run.measure(warmup, window)
+            t1 = time.monotonic()
+            c0b, c1b = tf.snapshot(), bodies.snapshot()
+        tf.close()
+        bodies.close()
+        # counts over measure() incl. its warm-up: rates only
+        r["tf_msgs_per_s"] = (c0b[0] - c0[0]) / (t1 - t0)
+        r["bodies_msgs_per_s"] = (c1b[0] - c1[0]) / (t1 - t0)
+        r["rx_mbyte_per_s"] = ((c0b[1] - c0[1]) + (c1b[1] - c1[1])) / (t1 - t0) / 1e6
+        log("cpu N=%d: node CPU %.1f%% of one core, /tf %.0f/s, ~bodies %.0f/s (%.1f MB/s), "
+            "%d overruns, step %.1f us, core other %.0f%%, load %.2f"
+            % (n, r["cpu_percent"], r["tf_msgs_per_s"], r["bodies_msgs_per_s"], r["rx_mbyte_per_s"],
+               r["overruns"], r["step_mean_us"], r["core_other_percent"], r["loadavg1"]))
+        out.append(record(part=2, label="cpu", n_bodies=n, rate_hz=1000, publish_rate_hz=100,
+                          subscribers="/tf, ~bodies", attempt=1, passed=r["overruns"] == 0, **r))
+    return out
+
+
+# --------------------------------------------------- part 3: wrench intake
+
+class Preserialized(ParticleWrenchArray):
+    """A ParticleWrenchArray serialised once; publish() then only copies bytes."""
+
+    __slots__ = ["_bytes"]
+
+    def __init__(self, msg):
+        super().__init__()
+        buff = io.BytesIO()
+        msg.serialize(buff)
+        self._bytes = buff.getvalue()
+
+    def serialize(self, buff):
+        buff.write(self._bytes)
+
+
+def wrench_array(k, n_bodies):
+    """K entries: first a marker (particle out of range, rejected: counts arrays taken),
+    then K-1 valid world-axes forces spread over all bodies' particles."""
+    wrenches = [ParticleWrench(body="b0", particle=999)]
+    for j in range(k - 1):
+        w = ParticleWrench(body="b%d" % (j % n_bodies), particle=(j // n_bodies) % 8)
+        w.wrench.force.x = 1e-3 * ((j % 7) - 3)
+        w.wrench.force.z = 1e-3
+        wrenches.append(w)
+    return Preserialized(ParticleWrenchArray(wrenches=wrenches))
+
+
+def publish_at(pub, msg, hz, duration_s, stop):
+    """Publishes msg at hz for duration_s; returns (sent, elapsed, busy seconds)."""
+    period = 1.0 / hz
+    t_start = time.monotonic()
+    t_next = t_start
+    sent, busy = 0, 0.0
+    while not stop.is_set():
+        now = time.monotonic()
+        if now - t_start >= duration_s:
+            break
+        if now < t_next:
+            time.sleep(t_next - now)
+            continue
+        b0 = time.monotonic()
+        pub.publish(msg)
+        busy += time.monotonic() - b0
+        sent += 1
+        t_next += period
+        if t_next < time.monotonic() - 10 * period:  # far behind: do not burst
+            t_next = time.monotonic()
+    return sent, time.monotonic() - t_start, busy
+
+
+def intake_run(diag, n_bodies, k, hz, warmup, window):
+    msg = wrench_array(k, n_bodies)
+    pub = rospy.Publisher(NS + "/particle_wrenches", ParticleWrenchArray, queue_size=1000, tcp_nodelay=True)
+    with NodeRun(diag, make_scene(n_bodies, 1000, 100), "intake_%d_%d" % (k, int(hz))) as run:
+        deadline = time.monotonic() + 10
+        while pub.get_num_connections() == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        time.sleep(0.3)
+        stop = threading.Event()
+        stats = {}
+        total = warmup + window + 2.5
+
+        def publisher():
+            stats["sent"], stats["elapsed"], stats["busy"] = publish_at(pub, msg, hz, total, stop)
+
+        thread = threading.Thread(target=publisher, daemon=True)
+        thread.start()
+        try:
+            r = run.measure(warmup, window)
+        finally:
+            stop.set()
+            thread.join()
+    pub.unregister()
+    arrays = r["rejected_marker"]
+    # every entry not taken (marker, any past the node's per-array cap) is counted as rejected
+    taken = arrays * k - r["rejected"]
+    r["pub_msgs_per_s"] = stats["sent"] / stats["elapsed"]
+    r["pub_busy_percent"] = 100.0 * stats["busy"] / stats["elapsed"]
+    r["wrenches_sent_per_s"] = r["pub_msgs_per_s"] * (k - 1)
+    r["wrenches_taken_per_s"] = taken / r["window_s"]
+    arrays_per_s = arrays / r["window_s"]
+    kept_up = arrays_per_s >= 0.97 * r["pub_msgs_per_s"]
+    all_taken = taken >= 0.99 * arrays * (k - 1)
+    held = r["rtf_min"] >= 0.99 and kept_up and all_taken
+    notes = []
+    if not kept_up:
+        notes.append("node took %.0f of %.0f arrays/s" % (arrays_per_s, r["pub_msgs_per_s"]))
+    if not all_taken:
+        notes.append("entries past the per-array cap rejected")
+    if r["pub_msgs_per_s"] < 0.97 * hz:
+        notes.append("publisher reached only %.0f of %.0f Hz" % (r["pub_msgs_per_s"], hz))
+    log("intake K=%d at %.0f Hz: sent %.0f wrenches/s (publisher %.0f Hz, busy %.0f%%), node took %.0f/s, "
+        "%d overruns, RTF min %.3f, step %.1f us, CPU %.0f%%, load %.2f -> %s"
+        % (k, hz, r["wrenches_sent_per_s"], r["pub_msgs_per_s"], r["pub_busy_percent"],
+           r["wrenches_taken_per_s"], r["overruns"], r["rtf_min"], r["step_mean_us"], r["cpu_percent"],
+           r["loadavg1"], "held" if held else "NOT held"))
+    return record(part=3, label="wrench intake", n_bodies=n_bodies, rate_hz=1000, publish_rate_hz=100,
+                  subscribers="none", entries_per_msg=k, msgs_hz=hz, attempt=1, passed=held,
+                  note="; ".join(notes), **r)
+
+
+def part_intake(diag, quick, budget_end):
+    n_bodies = 100
+    warmup, window = (1.0, 3.0) if quick else (2.0, 6.0)
+    plan = [(1000, 100.0), (10000, 100.0)] if quick else [
+        (100, 100.0), (1000, 100.0), (3000, 100.0), (10000, 100.0), (1000, 1000.0), (3000, 1000.0)]
+    rows = []
+    for k, hz in plan:
+        if rows and time.monotonic() > budget_end:
+            log("intake scan stopped: time budget")
+            break
+        rows.append(intake_run(diag, n_bodies, k, hz, warmup, window))
+    return rows
+
+
+# --------------------------------------------------------- part 4: latency
+
+class MomentumWatcher:
+    def __init__(self):
+        self.cond = threading.Condition()
+        self.latest = None  # (recv time, p tuple, stamp seconds)
+        self.sub = rospy.Subscriber(NS + "/bodies", BodyStateArray, self._on_msg, queue_size=100,
+                                    tcp_nodelay=True)
+
+    def _on_msg(self, msg):
+        now = time.time()
+        p = msg.bodies[0].linear_momentum
+        with self.cond:
+            self.latest = (now, (p.x, p.y, p.z), msg.header.stamp.to_sec())
+            self.cond.notify_all()
+
+    def wait(self, predicate, timeout):
+        deadline = time.monotonic() + timeout
+        with self.cond:
+            while self.latest is None or not predicate(self.latest):
+                remaining = deadline - time.monotonic()
+                if remaining <= 0:
+                    return None
+                self.cond.wait(remaining)
+            return self.latest
+
+    def close(self):
+        self.sub.unregister()
+
+
+def latency_run(diag, publish_rate, trials):
+    scene = make_scene(1, 1000, publish_rate, moving=False)
+    watcher = MomentumWatcher()
+    pub = rospy.Publisher(NS + "/particle_wrench", ParticleWrench, queue_size=10, tcp_nodelay=True)
+    latencies, lags = [], []
+    with NodeRun(diag, scene, "latency_%d" % publish_rate) as run:
+        deadline = time.monotonic() + 10
+        while pub.get_num_connections() == 0 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        if watcher.wait(lambda s: True, 10) is None:
+            raise RuntimeError("no ~bodies messages")
+        time.sleep(0.5)
+        cpu = CpuWindow(run.proc.pid, ARGS.node_cpu)
+        rng = random.Random(1)
+        for i in range(trials):
+            # settle: a message after the last change, then a random phase
+            time.sleep(rng.uniform(0.02, 0.05))
+            ref = watcher.wait(lambda s: True, 2)
+            p_ref = ref[1]
+            msg = ParticleWrench(body="b0", particle=0)
+            msg.wrench.force.x = 1.0 if i % 2 == 0 else -1.0
+            t_send = time.time()
+            pub.publish(msg)
+
+            def changed(s, t_send=t_send, p_ref=p_ref):
+                return s[0] >= t_send and max(abs(a - b) for a, b in zip(s[1], p_ref)) > 1e-9
+
+            got = watcher.wait(changed, 2.0)
+            stop_msg = ParticleWrench(body="b0", particle=0)  # zero force replaces it
+            pub.publish(stop_msg)
+            if got is None:
+                log("latency trial %d: no change seen within 2 s" % i)
+                continue
+            latencies.append(1e3 * (got[0] - t_send))
+            lags.append(1e3 * (got[2] - t_send))
+            # wait until the momentum is constant again (two consecutive equal messages)
+            prev = got
+            for _ in range(200):
+                s = watcher.wait(lambda s, prev=prev: s[0] > prev[0], 1.0)
+                if s is None or s[1] == prev[1]:
+                    break
+                prev = s
+        cpu_r = cpu.finish()
+    watcher.close()
+    pub.unregister()
+    latencies.sort()
+    n = len(latencies)
+    r = {
+        "latency_median_ms": statistics.median(latencies) if n else float("nan"),
+        "latency_p90_ms": latencies[min(n - 1, int(0.9 * n))] if n else float("nan"),
+        "latency_min_ms": latencies[0] if n else float("nan"),
+        "latency_max_ms": latencies[-1] if n else float("nan"),
+        "stamp_lag_median_ms": statistics.median(lags) if n else float("nan"),
+        "trials": n, "loadavg1": os.getloadavg()[0], "startup_s": run.startup_s, **cpu_r,
+    }
+    bound = 1e3 / publish_rate + 1.0
+    log("latency publish_rate %d: median %.2f ms (p90 %.2f, min %.2f, max %.2f) over %d trials; "
+        "1/publish_rate + 1/rate = %.1f ms; stamp - send median %.2f ms; load %.2f"
+        % (publish_rate, r["latency_median_ms"], r["latency_p90_ms"], r["latency_min_ms"],
+           r["latency_max_ms"], n, bound, r["stamp_lag_median_ms"], r["loadavg1"]))
+    return record(part=4, label="latency", n_bodies=1, rate_hz=1000, publish_rate_hz=publish_rate,
+                  subscribers="~bodies", attempt=1, passed=n >= trials * 0.9, **r)
+
+
+def part_latency(diag, quick):
+    rates = [1000] if quick else [100, 1000]
+    trials = 20 if quick else 40
+    return [latency_run(diag, rate, trials) for rate in rates]
+
+
+# ------------------------------------------------------------------ report
+
+def git_describe():
+    try:
+        head = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
+                              text=True).stdout.strip()
+        dirty = subprocess.run(["git", "-C", REPO, "status", "--porcelain", "--untracked-files=no"],
+                               capture_output=True, text=True).stdout.strip()
+        return head + (" (with uncommitted changes)" if dirty else "")
+    except OSError:
+        return "unknown"
+
+
+def write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed):
+    loads = [r["loadavg1"] for r in ROWS if "loadavg1" in r]
+    cpu_model = ""
+    try:
+        with open("/proc/cpuinfo") as f:
+            for line in f:
+                if line.startswith("model name"):
+                    cpu_model = line.split(":", 1)[1].strip()
+                    break
+    except OSError:
+        pass
+    integrator = next((r.get("integrator") for r in ROWS if r.get("integrator")), "")
+    strict_best, best, first_fail = capacity
+    md = ["# The node under load (`bench/node_load.py`%s)" % (" --quick" if quick else ""), ""]
+    md.append("Commit %s, %s, %d cores; node pinned to core %d (`taskset`) with scheduling `%s`, this script "
+              "and the master on core %d. Integrator: %s (the node's default). Scenes: N generated boxes, `resolution: 2` "
+              "(8 particles each), all moving (idle bodies are skipped by the integrator). "
+              "Load average (1 min) during the runs: %.2f to %.2f. Run time %.0f s."
+              % (git_describe(), cpu_model or "unknown CPU", os.cpu_count(), ARGS.node_cpu, ARGS.sched, ARGS.bench_cpu,
+                 integrator, min(loads) if loads else float("nan"), max(loads) if loads else float("nan"),
+                 elapsed))
+    md.append("")
+    md.append("## Summary")
+    md.append("")
+    summary = []
+    summary.append(("bodies at rate 1000 Hz, zero overruns in the window (publish_rate 10, one core)",
+                    "%s" % (strict_best if strict_best is not None else "none of the sizes tried")))
+    summary.append(("bodies at rate 1000 Hz, overruns <= %.0f/s (this machine's noise), RTF >= 0.99"
+                    % NOISE_OVERRUNS_PER_S,
+                    "%s (fails at %s)" % (best if best is not None else "none",
+                                         first_fail if first_fail else "> largest tried")))
+    for r in cpu_rows:
+        summary.append(("node CPU, %d bodies, /tf + ~bodies at 100 Hz subscribed" % r["n_bodies"],
+                        "%.1f %% of one core" % r["cpu_percent"]))
+    held = [r for r in intake_rows if r["passed"]]
+    held0 = [r for r in held if r["overruns"] == 0]
+    if intake_rows:
+        summary.append(("particle wrenches/s taken, rate held (RTF >= 0.99, all arrays taken)",
+                        "%.0f" % max(r["wrenches_taken_per_s"] for r in held) if held else "none held"))
+        summary.append(("... of those with zero overruns",
+                        "%.0f" % max(r["wrenches_taken_per_s"] for r in held0) if held0 else "none"))
+    for r in latency_rows:
+        summary.append(("wrench -> ~bodies latency, publish_rate %d (median of %d)"
+                        % (r["publish_rate_hz"], r["trials"]),
+                        "%.2f ms (1/publish_rate = %.1f ms)" % (r["latency_median_ms"], 1e3 / r["publish_rate_hz"])))
+    md.append(md_table(["figure", "value"], summary))
+    md.append("")
+
+    md.append("## 1. Capacity: rate 1000 Hz, publish_rate 10, no /tf or ~bodies subscriber")
+    md.append("")
+    md.append("Each run: node started on a fresh scene, %s s warm-up, then the window between two "
+              "diagnostics reports. Overruns = increase of the cumulative `overruns` key (a wake-up late by "
+              "more than one step). RTF min = lowest `real_time_factor_achieved` in the window. "
+              "Pass = zero overruns and RTF min >= 0.99; \"within noise\" = at most %.0f overrun/s, no catch-up-limit "
+              "hit and RTF min >= 0.99 (this shared virtual machine gives a one-body node occasional late "
+              "wake-ups even under SCHED_FIFO). The scan stops at the first size that fails beyond noise and "
+              "bisects; a size that fails only within noise is repeated once; all attempts are listed. "
+              "\"core other\" = busy time of the node's core not used by the node (disturbance)."
+              % ("1" if quick else "3", NOISE_OVERRUNS_PER_S))
+    md.append("")
+    rows = [r for r in ROWS if r["part"] == 1]
+    md.append(md_table(
+        ["N bodies", "try", "window s", "overruns", "overruns per publish cycle", "catch-up hits",
+         "step mean us", "ns per body-step", "step max us", "RTF min", "node CPU %", "core other %", "load avg",
+         "first report s", "pass"],
+        [[r["n_bodies"], r["attempt"], r["window_s"], r["overruns"], "%.2f" % (r["overruns"] / (10.0 * r["window_s"])),
+          r["catch_up_limit_hits"], r["step_mean_us"], 1e3 * r["step_mean_us"] / r["n_bodies"],
+          r["step_max_us"], "%.3f" % r["rtf_min"], r["cpu_percent"], r["core_other_percent"],
+          "%.2f" % r["loadavg1"], r["startup_s"],
+          "yes" if r["passed"] else ("within noise" if r["load_ok"] else "no")] for r in rows]))
+    md.append("")
+
+    md.append("## 2. CPU use: rate 1000 Hz, /tf and ~bodies at 100 Hz, both subscribed")
+    md.append("")
+    md.append("Node CPU = (utime + stime) from /proc/<pid>/stat over the window, per wall second, in % of one "
+              "core. The script subscribes to /tf and ~bodies as raw bytes (rospy.AnyMsg), so both messages "
+              "are built, serialised and sent.")
+    md.append("")
+    md.append(md_table(
+        ["N bodies", "window s", "node CPU %", "step mean us", "/tf msg/s", "~bodies msg/s", "received MB/s",
+         "overruns", "core other %", "load avg"],
+        [[r["n_bodies"], r["window_s"], r["cpu_percent"], r["step_mean_us"], r["tf_msgs_per_s"],
+          r["bodies_msgs_per_s"], "%.2f" % r["rx_mbyte_per_s"], r["overruns"], r["core_other_percent"],
+          "%.2f" % r["loadavg1"]] for r in cpu_rows]))
+    md.append("")
+
+    md.append("## 3. Particle wrench intake through ~particle_wrenches (100 bodies, 800 particles, publish_rate 100)")
+    md.append("")
+    md.append("Arrays of K entries published at R Hz by this script (rospy, each array serialised once and "
+              "re-sent as bytes). The first entry of each array is deliberately invalid (particle 999), so the "
+              "increase of `rejected_particle_out_of_range` counts the arrays the node processed; taken = "
+              "arrays x K - all rejected entries. Held = RTF min >= 0.99, the node processed >= 97 % of the "
+              "arrays sent and took >= 99 % of their valid entries. Publisher busy = time inside "
+              "publish() / wall time.")
+    md.append("")
+    md.append(md_table(
+        ["K", "R Hz", "publisher Hz", "publisher busy %", "sent wrenches/s", "taken wrenches/s", "overruns",
+         "RTF min", "step mean us", "node CPU %", "load avg", "held", "note"],
+        [[r["entries_per_msg"], "%.0f" % r["msgs_hz"], r["pub_msgs_per_s"], r["pub_busy_percent"],
+          "%.0f" % r["wrenches_sent_per_s"], "%.0f" % r["wrenches_taken_per_s"], r["overruns"],
+          "%.3f" % r["rtf_min"], r["step_mean_us"], r["cpu_percent"], "%.2f" % r["loadavg1"],
+          "yes" if r["passed"] else "no", r.get("note", "")] for r in intake_rows]))
+    md.append("")
+
+    md.append("## 4. Latency: ParticleWrench (zero stamp) -> first ~bodies message reflecting it")
+    md.append("")
+    md.append("One box at rest, rate 1000 Hz. Each trial: wall time before publish(); the first ~bodies message "
+              "(tcp_nodelay, deserialised by rospy) whose linear momentum differs from the one before the "
+              "send; latency = wall time at its callback - send time; then a zero force replaces the push and "
+              "the next trial waits for a constant momentum plus a random 20-50 ms. Includes rospy publish "
+              "and callback overhead on both ends. Expected bound: up to one step (1 ms) until the wrench "
+              "is used, up to 1/publish_rate until the next publish cycle, plus transport. stamp - send = "
+              "the message's stamp (simulation time) minus the send time.")
+    md.append("")
+    md.append(md_table(
+        ["publish_rate Hz", "trials", "median ms", "p90 ms", "min ms", "max ms", "1/publish_rate ms",
+         "stamp - send median ms", "node CPU %", "load avg"],
+        [[r["publish_rate_hz"], r["trials"], "%.2f" % r["latency_median_ms"], "%.2f" % r["latency_p90_ms"],
+          "%.2f" % r["latency_min_ms"], "%.2f" % r["latency_max_ms"], 1e3 / r["publish_rate_hz"],
+          "%.2f" % r["stamp_lag_median_ms"], r["cpu_percent"], "%.2f" % r["loadavg1"]] for r in latency_rows]))
+    md.append("")
+    return "\n".join(md)
+
+
+def main():
+    quick = ARGS.quick
+    start = time.monotonic()
+    log("workspace %s, master %s, node on core %d, logs in %s"
+        % (os.environ[ENV_MARK], os.environ["ROS_MASTER_URI"], ARGS.node_cpu, LOG_DIR))
+    start_master()
+    rospy.init_node("node_load_bench", anonymous=True, disable_signals=True)
+    diag = Diagnostics()
+    capacity, cpu_rows, intake_rows, latency_rows = (None, None, None), [], [], []
+    try:
+        # Budgets (s from start) keep the full run under about 5 minutes.
+        capacity = part_capacity(diag, quick, start + (20 if quick else 140))
+        cpu_rows = part_cpu(diag, quick)
+        intake_rows = part_intake(diag, quick, start + (45 if quick else 250))
+        latency_rows = part_latency(diag, quick)
+    finally:
+        elapsed = time.monotonic() - start
+        report = write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed)
+        os.makedirs(ARGS.out, exist_ok=True)
+        md_path = os.path.join(ARGS.out, "node_load.md")
+        csv_path = os.path.join(ARGS.out, "node_load.csv")
+        with open(md_path, "w") as f:
+            f.write(report + "\n")
+        with open(csv_path, "w", newline="") as f:
+            writer = csv.DictWriter(f, fieldnames=CSV_FIELDS, extrasaction="ignore")
+            writer.writeheader()
+            for row in ROWS:
+                writer.writerow({k: (("%.6g" % v) if isinstance(v, float) else v) for k, v in row.items()})
+        print()
+        print(report)
+        print("written: %s, %s" % (md_path, csv_path))
+        rospy.signal_shutdown("done")
+        PROCS.stop_all()
+
+
+if __name__ == "__main__":
+    try:
+        main()
+    except KeyboardInterrupt:
+        PROCS.stop_all()
+        sys.exit(130)
+    except Exception:
+        PROCS.stop_all()
+        raise
