@@ -1,5 +1,5 @@
 # The peer engines of the work-precision benchmark: finds MuJoCo, Bullet and
-# ODE as Debian packages them (scripts/install_bench_deps.sh), and builds
+# ODE as Debian packages them (scripts/bench.sh installs them), and builds
 # rigid_body_sim_bench_peers from bench/scene.cpp, the shared peer files and
 # the peers of the engines that were found, with RBS_HAVE_<ENGINE> defined for
 # each. A missing engine is not an error: its benchmark lines are skipped and

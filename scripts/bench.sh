@@ -14,8 +14,11 @@ if [ "${1:-}" = "--quick" ]; then
   repetitions=1
   results="$(mktemp -d)"
 fi
-bash "$repo/scripts/install_bench_deps.sh"
-bash "$repo/scripts/build.sh" -DRBS_BUILD_BENCH=ON -j2 work_precision throughput_bench stability_stress
+# The peer engines (MuJoCo 2.2.2, Bullet 3.24, ODE 0.16) and the plotting; the
+# bench builds without the engines too, and skips their lines.
+bash "$repo/scripts/install_deps.sh" libmujoco-dev libbullet-dev libode-dev pkg-config python3-matplotlib
+# The node, the bench programs and wrench_flood (all of them with the option on).
+bash "$repo/scripts/build.sh" -DRBS_BUILD_BENCH=ON -j2
 bin="$ws/devel/lib/rigid_body_sim"
 mkdir -p "$results"
 cd "$repo"
@@ -26,5 +29,7 @@ echo "== throughput (Google Benchmark, one core) =="
 "$bin/throughput_bench" --benchmark_repetitions=$repetitions --benchmark_report_aggregates_only=true \
   --benchmark_out="$results/throughput.json" --benchmark_out_format=json
 echo "== stability stress =="
-"$bin/stability_stress" "$results/stress.csv"
+"$bin/stability_stress" $quick "$results/stress.csv" | tee "$results/stress.md"
+echo "== the node under load =="
+/usr/bin/python3 bench/node_load.py --workspace "$ws" $quick --out "$results"
 echo "results in $results"

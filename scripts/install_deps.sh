@@ -1,6 +1,7 @@
 #!/bin/bash
-# Installs Debian bookworm's ROS 1 packages and the tools rigid_body_sim needs.
-# Skips apt entirely when everything is already there.
+# Installs Debian bookworm's ROS 1 packages and the tools rigid_body_sim needs,
+# plus any package named on the command line (scripts/bench.sh adds the peer
+# engines and matplotlib). Skips apt entirely when everything is already there.
 set -euo pipefail
 packages=(
   build-essential cmake catkin python3-catkin-pkg python3-rospkg
@@ -12,6 +13,7 @@ packages=(
   python3-geometry-msgs python3-std-srvs python3-diagnostic-msgs
   python3-tf2-msgs python3-visualization-msgs python3-rosgraph-msgs
   libeigen3-dev libboost-dev libgtest-dev googletest libbenchmark-dev
+  "$@"
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -1,0 +1,130 @@
+#!/bin/bash
+# Builds and runs the libFuzzer targets in fuzz/ with clang-14 and
+# ASan + UBSan, each for FUZZ_TIME seconds (default 60), starting from and
+# growing its corpus in fuzz/corpus/<target>/ (minimized with -merge=1 at the
+# end, inputs <= FUZZ_MAX_LEN bytes). Prints execs/s, coverage and corpus size
+# per target; a crash, hang, leak or sanitizer report is saved as
+# fuzz/crashes/<target>-crash-... and makes the script exit non-zero.
+#
+#   bash scripts/fuzz.sh                     # both targets, 60 s each
+#   FUZZ_TIME=300 bash scripts/fuzz.sh wrench_fuzzer
+#   FUZZ_MERGE=0 ...                         # leave fuzz/corpus untouched
+#
+# The generated message headers come from a catkin devel space: RBS_WS
+# (default /tmp/ws_fuzz) gets the message targets built if it has none.
+# Objects and binaries go to FUZZ_BUILD (default /tmp/rbs_fuzz_build).
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ws="${RBS_WS:-/tmp/ws_fuzz}"
+out="${FUZZ_BUILD:-/tmp/rbs_fuzz_build}"
+fuzz_time="${FUZZ_TIME:-60}"
+max_len="${FUZZ_MAX_LEN:-1024}"
+merge="${FUZZ_MERGE:-1}"
+# FUZZ_TOLERATE_KNOWN=1: the harnesses skip the inputs of the bugs already
+# reported (see RBS_FUZZ_TOLERATE_KNOWN in fuzz/*.cpp) to look for others.
+tolerate="${FUZZ_TOLERATE_KNOWN:-0}"
+jobs="${FUZZ_JOBS:-2}"
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(scene_parser_fuzzer wrench_fuzzer)
+t0=$(date +%s)
+
+# ---- toolchain --------------------------------------------------------------
+need=()
+command -v clang++-14 >/dev/null || need+=(clang-14)
+dpkg-query -W -f='${Status}' libclang-rt-14-dev 2>/dev/null | grep -q 'install ok installed' ||
+  need+=(libclang-rt-14-dev)
+if [ ${#need[@]} -gt 0 ]; then
+  sudo_cmd=""
+  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
+  echo "fuzz: installing ${need[*]}"
+  $sudo_cmd apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${need[@]}"
+fi
+cxx=clang++-14
+
+# ---- generated message headers ----------------------------------------------
+if [ ! -f "$ws/devel/include/rigid_body_sim/ParticleWrench.h" ]; then
+  echo "fuzz: building the message headers in $ws"
+  RBS_WS="$ws" bash "$repo/scripts/build.sh" -j1 rigid_body_sim_generate_messages_cpp
+fi
+
+# ---- build ------------------------------------------------------------------
+mkdir -p "$out/obj"
+cxxflags=(-std=c++17 -O1 -g -fno-omit-frame-pointer
+  -fsanitize=address,undefined -fno-sanitize-recover=all
+  -I"$repo/include" -I"$ws/devel/include" -isystem /usr/include/eigen3 -DNDEBUG)
+harness_flags=()
+[ "$tolerate" = 1 ] && harness_flags+=(-DRBS_FUZZ_TOLERATE_KNOWN)
+# The project's own code gets the coverage instrumentation; the sources are
+# the core's list in CMakeLists.txt plus the two node files under test.
+mapfile -t sources < <(grep -oE 'src/core/[A-Za-z0-9_/]+\.cpp' "$repo/CMakeLists.txt")
+sources+=(src/ros/scene_params.cpp src/ros/conversions.cpp)
+export repo out cxx
+printf '%s\n' "${sources[@]}" | xargs -P "$jobs" -I{} bash -c '
+  src="$1"; shift
+  obj="$out/obj/$(echo "$src" | tr / _).o"
+  if [ ! -f "$obj" ] || [ "$repo/$src" -nt "$obj" ] || [ -n "$(find "$repo/include" -newer "$obj" -name "*.h" | head -1)" ]; then
+    "$cxx" "$@" -fsanitize=fuzzer-no-link -c "$repo/$src" -o "$obj"
+  fi' _ {} "${cxxflags[@]}"
+objs=()
+for s in "${sources[@]}"; do objs+=("$out/obj/$(echo "$s" | tr / _).o"); done
+ros_libs=(-L/usr/lib/x86_64-linux-gnu -lroscpp -lxmlrpcpp -lrostime -lroscpp_serialization
+  -lrosconsole -lcpp_common -lboost_system -lpthread)
+for t in "${targets[@]}"; do
+  "$cxx" "${cxxflags[@]}" "${harness_flags[@]}" -fsanitize=fuzzer "$repo/fuzz/$t.cpp" "${objs[@]}" "${ros_libs[@]}" -o "$out/$t"
+done
+t_built=$(date +%s)
+echo "fuzz: built ${targets[*]} in $((t_built - t0)) s"
+
+# ---- run --------------------------------------------------------------------
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+mkdir -p "$repo/fuzz/crashes"
+status=0
+summary=()
+for t in "${targets[@]}"; do
+  corpus="$repo/fuzz/corpus/$t"
+  work="$out/corpus_$t"
+  mkdir -p "$corpus"
+  rm -rf "$work"; mkdir -p "$work"
+  cp -a "$corpus/." "$work/" 2>/dev/null || true
+  log="$out/$t.log"
+  echo "fuzz: running $t for $fuzz_time s (log $log)"
+  rc=0
+  "$out/$t" "$work" -max_total_time="$fuzz_time" -max_len="$max_len" -timeout=10 \
+    -rss_limit_mb=2048 -print_final_stats=1 \
+    -artifact_prefix="$repo/fuzz/crashes/$t-" >"$log" 2>&1 || rc=$?
+  grep -E '^#[0-9]+' "$log" | tail -n 3 || true
+  grep -E '^(stat::|Done )' "$log" || true
+  stats_line=$(grep -E '^#[0-9]+' "$log" | tail -1 || true)
+  execs=$(grep -oE 'stat::number_of_executed_units: *[0-9]+' "$log" | grep -oE '[0-9]+$' || echo '?')
+  eps=$(grep -oE 'stat::average_exec_per_sec: *[0-9]+' "$log" | grep -oE '[0-9]+$' || echo '?')
+  cov=$(echo "$stats_line" | grep -oE 'cov: [0-9]+' | grep -oE '[0-9]+' || echo '?')
+  ft=$(echo "$stats_line" | grep -oE 'ft: [0-9]+' | grep -oE '[0-9]+' || echo '?')
+  if [ "$rc" -ne 0 ]; then
+    echo "fuzz: $t FAILED (exit $rc): see $log and fuzz/crashes/"
+    grep -E 'ERROR: |runtime error|invariant broken|uncaught|Test unit written' "$log" | head -10 || true
+    status=1
+  fi
+  if [ "$merge" = 1 ]; then
+    # Keep only the inputs that add coverage: a small, reviewable corpus.
+    merged="$out/merged_$t"
+    rm -rf "$merged"; mkdir -p "$merged"
+    "$out/$t" -merge=1 -max_len="$max_len" "$merged" "$work" >"$out/$t.merge.log" 2>&1 || {
+      echo "fuzz: merge of $t failed (see $out/$t.merge.log)"; status=1; }
+    if [ -n "$(ls -A "$merged")" ]; then
+      rm -rf "$corpus"; mkdir -p "$corpus"; cp -a "$merged/." "$corpus/"
+    fi
+  fi
+  files=$(find "$corpus" -type f | wc -l)
+  bytes=$(find "$corpus" -type f -printf '%s\n' | awk '{s += $1} END {print s + 0}')
+  summary+=("$t: exit $rc, $execs execs, $eps execs/s, cov $cov edges, ft $ft features, corpus $files files / $bytes bytes")
+done
+t_end=$(date +%s)
+
+echo "fuzz: ---- summary (build $((t_built - t0)) s, total $((t_end - t0)) s) ----"
+for line in "${summary[@]}"; do echo "fuzz: $line"; done
+total=$(find "$repo/fuzz/corpus" -type f -printf '%s\n' | awk '{s += $1} END {print s + 0}')
+echo "fuzz: fuzz/corpus is $total bytes"
+if [ "$total" -gt 1048576 ]; then echo "fuzz: corpus over 1 MB"; status=1; fi
+exit "$status"

@@ -1,0 +1,79 @@
+#!/bin/bash
+# Builds the whole package (core, node, core gtests and rostests) with
+# AddressSanitizer + UndefinedBehaviorSanitizer (gcc) in a workspace of its own
+# (default /tmp/ws_asan; override with RBS_WS=/path), runs every test and exits
+# non-zero on a test failure or on any sanitizer report from any process.
+#
+#   bash scripts/sanitizers.sh            # build -j2, then all tests
+#   RBS_JOBS=1 bash scripts/sanitizers.sh # build -j1
+#
+# Every instrumented process (gtest binaries, the node launched by rostest)
+# writes its reports to $ws/sanitizer_logs/ (ASAN_OPTIONS/UBSAN_OPTIONS
+# log_path), so a report is seen even when rostest keeps the node's stderr in
+# its own log; the ROS logs of this run ($ws/ros_home/log) and the test output
+# are searched for "runtime error" / "ERROR: AddressSanitizer" /
+# "ERROR: LeakSanitizer" as well.
+set -euo pipefail
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ws="${RBS_WS:-/tmp/ws_asan}"
+jobs="${RBS_JOBS:-2}"
+start=$(date +%s)
+
+bash "$repo/scripts/install_deps.sh"
+mkdir -p "$ws/src"
+[ -e "$ws/src/rigid_body_sim" ] || ln -s "$repo" "$ws/src/rigid_body_sim"
+cd "$ws"
+export PATH="/usr/bin:$PATH"
+
+san="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
+# RelWithDebInfo (-O2 -g): the timing rostests need a node that keeps up with
+# its rate under ASan; -g gives line numbers in the reports.
+catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_CXX_FLAGS="$san" -DCMAKE_C_FLAGS="$san" \
+  -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
+  -j"$jobs"
+build_done=$(date +%s)
+
+set +u; source devel/setup.bash; set -u
+
+logs="$ws/sanitizer_logs"
+rm -rf "$logs" "$ws/ros_home" build/test_results
+mkdir -p "$logs" "$ws/ros_home/log"
+# This run's ROS logs only (the node's stderr under rostest ends up there).
+export ROS_HOME="$ws/ros_home"
+export ROS_LOG_DIR="$ws/ros_home/log"
+export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1:log_path=$logs/asan:log_exe_name=1"
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:log_path=$logs/ubsan:log_exe_name=1"
+# Leaks inside the ROS libraries at exit (none of this package's code).
+export LSAN_OPTIONS="suppressions=$repo/scripts/lsan.supp:print_suppressions=0"
+
+status=0
+catkin_make run_tests -j1 2>&1 | tee "$ws/run_tests.log" || status=1
+catkin_test_results build/test_results || status=1
+tests_done=$(date +%s)
+
+reports=$(find "$logs" -type f | sort)
+if [ -n "$reports" ]; then
+  echo "sanitizers: REPORTS in $logs:"
+  for f in $reports; do echo "==== $f"; head -60 "$f"; done
+  status=1
+fi
+pattern='runtime error|ERROR: AddressSanitizer|ERROR: LeakSanitizer|SUMMARY: UndefinedBehaviorSanitizer'
+hits=$( { grep -rlE "$pattern" "$ws/ros_home/log" build/test_results 2>/dev/null || true; \
+          grep -lE "$pattern" "$ws/run_tests.log" 2>/dev/null || true; } )
+if [ -n "$hits" ]; then
+  echo "sanitizers: sanitizer output found in:"
+  echo "$hits"
+  for f in $hits; do grep -nE -A20 "$pattern" "$f" | head -40; done
+  status=1
+fi
+
+echo "sanitizers: build $((build_done - start)) s, tests $((tests_done - build_done)) s," \
+     "total $((tests_done - start)) s (workspace $ws, -j$jobs)"
+if [ "$status" -eq 0 ]; then
+  echo "sanitizers: OK: all tests passed, no ASan/UBSan/LSan report"
+else
+  echo "sanitizers: FAILED"
+fi
+exit "$status"
