@@ -14,6 +14,7 @@ import signal
 import subprocess
 import sys
 import time
+import xmlrpc.client
 
 parser = argparse.ArgumentParser()
 repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -27,6 +28,7 @@ parser.add_argument("--out", default=os.path.join(repo, "bench", "results", "flo
 args = parser.parse_args()
 
 os.environ["ROS_MASTER_URI"] = "http://localhost:%d" % args.port
+import rosnode  # noqa: E402
 import rospy  # noqa: E402  (after ROS_MASTER_URI is set)
 from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
 from rigid_body_sim.msg import BodyStateArray  # noqa: E402
@@ -54,7 +56,9 @@ try:
     bodies = rospy.wait_for_message("/rigid_body_sim/bodies", BodyStateArray, timeout=10)
     names = [b.name for b in bodies.bodies]
     counts = {names[m.id]: len(m.points) for m in markers.markers}
-    pid = int(subprocess.check_output(["pgrep", "-f", "rigid_body_sim_node"]).split()[0])
+    # This launch's node, not any other rigid_body_sim_node on the machine.
+    node_api = rosnode.get_api_uri(rospy.get_master(), "/rigid_body_sim", skip_cache=True)
+    pid = xmlrpc.client.ServerProxy(node_api).getPid(rospy.get_name())[2]
 
     def rss_kib():
         with open("/proc/%d/status" % pid) as status:

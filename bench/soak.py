@@ -18,6 +18,7 @@ import signal
 import subprocess
 import sys
 import time
+import xmlrpc.client
 
 parser = argparse.ArgumentParser()
 repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -29,6 +30,7 @@ parser.add_argument("--out", default=os.path.join(repo, "bench", "results", "soa
 args = parser.parse_args()
 
 os.environ["ROS_MASTER_URI"] = "http://localhost:%d" % args.port
+import rosnode  # noqa: E402
 import rospy  # noqa: E402
 from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
 from rigid_body_sim.msg import BodyStateArray, ParticleWrench  # noqa: E402
@@ -53,7 +55,9 @@ try:
     names = [b.name for b in rospy.wait_for_message("/rigid_body_sim/bodies", BodyStateArray, timeout=10).bodies]
     counts = {names[m.id]: len(m.points) for m in markers.markers}
     pushed = [n for n in names if n != "t_handle"]
-    pid = int(subprocess.check_output(["pgrep", "-f", "rigid_body_sim_node"]).split()[0])
+    # This launch's node, not any other rigid_body_sim_node on the machine.
+    node_api = rosnode.get_api_uri(rospy.get_master(), "/rigid_body_sim", skip_cache=True)
+    pid = xmlrpc.client.ServerProxy(node_api).getPid(rospy.get_name())[2]
     publisher = rospy.Publisher("/rigid_body_sim/particle_wrench", ParticleWrench, queue_size=1000)
     rng = random.Random(20261122)
 
