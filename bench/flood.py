@@ -28,7 +28,7 @@ parser.add_argument("--out", default=os.path.join(repo, "bench", "results", "flo
 args = parser.parse_args()
 
 os.environ["ROS_MASTER_URI"] = "http://localhost:%d" % args.port
-import rosnode  # noqa: E402
+import rosgraph  # noqa: E402
 import rospy  # noqa: E402  (after ROS_MASTER_URI is set)
 from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
 from rigid_body_sim.msg import BodyStateArray  # noqa: E402
@@ -57,7 +57,7 @@ try:
     names = [b.name for b in bodies.bodies]
     counts = {names[m.id]: len(m.points) for m in markers.markers}
     # This launch's node, not any other rigid_body_sim_node on the machine.
-    node_api = rosnode.get_api_uri(rospy.get_master(), "/rigid_body_sim", skip_cache=True)
+    node_api = rosgraph.Master(rospy.get_name()).lookupNode("/rigid_body_sim")
     pid = xmlrpc.client.ServerProxy(node_api).getPid(rospy.get_name())[2]
 
     def rss_kib():

@@ -30,7 +30,7 @@ parser.add_argument("--out", default=os.path.join(repo, "bench", "results", "soa
 args = parser.parse_args()
 
 os.environ["ROS_MASTER_URI"] = "http://localhost:%d" % args.port
-import rosnode  # noqa: E402
+import rosgraph  # noqa: E402
 import rospy  # noqa: E402
 from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
 from rigid_body_sim.msg import BodyStateArray, ParticleWrench  # noqa: E402
@@ -56,7 +56,7 @@ try:
     counts = {names[m.id]: len(m.points) for m in markers.markers}
     pushed = [n for n in names if n != "t_handle"]
     # This launch's node, not any other rigid_body_sim_node on the machine.
-    node_api = rosnode.get_api_uri(rospy.get_master(), "/rigid_body_sim", skip_cache=True)
+    node_api = rosgraph.Master(rospy.get_name()).lookupNode("/rigid_body_sim")
     pid = xmlrpc.client.ServerProxy(node_api).getPid(rospy.get_name())[2]
     publisher = rospy.Publisher("/rigid_body_sim/particle_wrench", ParticleWrench, queue_size=1000)
     rng = random.Random(20261122)
