@@ -29,3 +29,9 @@ add_rostest(test/ros/hz.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/invalid_scene.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/readme_examples.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/respawn.test DEPENDENCIES rigid_body_sim_node)
+
+# Conversions without a master.
+catkin_add_gtest(conversions_test test/ros/conversions_test.cpp)
+target_include_directories(conversions_test PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(conversions_test rigid_body_sim_ros gtest_main)
+add_dependencies(conversions_test ${${PROJECT_NAME}_EXPORTED_TARGETS})

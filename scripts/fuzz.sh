@@ -4,7 +4,8 @@
 # growing its corpus in fuzz/corpus/<target>/ (minimized with -merge=1 at the
 # end, inputs <= FUZZ_MAX_LEN bytes). Prints execs/s, coverage and corpus size
 # per target; a crash, hang, leak or sanitizer report is saved as
-# fuzz/crashes/<target>-crash-... and makes the script exit non-zero.
+# fuzz/crashes/<target>-crash-... and makes the script exit non-zero. Inputs
+# that crashed once and were fixed live in fuzz/regressions/ and run first.
 #
 #   bash scripts/fuzz.sh                     # both targets, 60 s each
 #   FUZZ_TIME=300 bash scripts/fuzz.sh wrench_fuzzer
@@ -20,9 +21,6 @@ out="${FUZZ_BUILD:-/tmp/rbs_fuzz_build}"
 fuzz_time="${FUZZ_TIME:-60}"
 max_len="${FUZZ_MAX_LEN:-1024}"
 merge="${FUZZ_MERGE:-1}"
-# FUZZ_TOLERATE_KNOWN=1: the harnesses skip the inputs of the bugs already
-# reported (see RBS_FUZZ_TOLERATE_KNOWN in fuzz/*.cpp) to look for others.
-tolerate="${FUZZ_TOLERATE_KNOWN:-0}"
 jobs="${FUZZ_JOBS:-2}"
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(scene_parser_fuzzer wrench_fuzzer)
@@ -54,7 +52,6 @@ cxxflags=(-std=c++17 -O1 -g -fno-omit-frame-pointer
   -fsanitize=address,undefined -fno-sanitize-recover=all
   -I"$repo/include" -I"$ws/devel/include" -isystem /usr/include/eigen3 -DNDEBUG)
 harness_flags=()
-[ "$tolerate" = 1 ] && harness_flags+=(-DRBS_FUZZ_TOLERATE_KNOWN)
 # The project's own code gets the coverage instrumentation; the sources are
 # the core's list in CMakeLists.txt plus the two node files under test.
 mapfile -t sources < <(grep -oE 'src/core/[A-Za-z0-9_/]+\.cpp' "$repo/CMakeLists.txt")
@@ -89,6 +86,16 @@ for t in "${targets[@]}"; do
   rm -rf "$work"; mkdir -p "$work"
   cp -a "$corpus/." "$work/" 2>/dev/null || true
   log="$out/$t.log"
+  # Every input that once crashed (fuzz/regressions/, fixed since) runs first.
+  regressions=("$repo"/fuzz/regressions/"$t"-*)
+  if [ -e "${regressions[0]}" ]; then
+    if ! "$out/$t" "${regressions[@]}" >"$out/$t.regressions.log" 2>&1; then
+      echo "fuzz: $t fails a regression input again: see $out/$t.regressions.log"
+      status=1
+    else
+      echo "fuzz: $t passes its ${#regressions[@]} regression inputs"
+    fi
+  fi
   echo "fuzz: running $t for $fuzz_time s (log $log)"
   rc=0
   "$out/$t" "$work" -max_total_time="$fuzz_time" -max_len="$max_len" -timeout=10 \

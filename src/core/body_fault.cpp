@@ -27,14 +27,19 @@ BodyFault CheckState(const BodyModel& model, const BodyState& state, double dt_s
   const double sum = state.position.sum() + state.orientation.coeffs().sum() +
                      state.linear_momentum.sum() + state.angular_momentum.sum();
   if (!std::isfinite(sum)) return BodyFault::kNonFinite;
+  // Comparisons are written so that a NaN (inf − inf in an overflowing
+  // product) fails them.
   const double speed_limit = kSpeedOfLight_mps * model.mass();
-  if (state.linear_momentum.squaredNorm() > speed_limit * speed_limit) {
+  if (!(state.linear_momentum.squaredNorm() <= speed_limit * speed_limit)) {
     return BodyFault::kFasterThanLight;
   }
-  // |ω| <= |L| / λ_min: only a body that may spin that fast pays for ω itself.
+  // ½|L|²/λ_min bounds the rotational energy, which must not overflow either.
   const double inverse_moment_max = model.inverse_principal_moments().maxCoeff();
-  if (state.angular_momentum.norm() * inverse_moment_max * dt_s >= M_PI &&
-      AngularVelocity(model, state).norm() * dt_s >= M_PI) {
+  const double momentum_squared = state.angular_momentum.squaredNorm();
+  if (!std::isfinite(momentum_squared * inverse_moment_max)) return BodyFault::kNonFinite;
+  // |ω| <= |L| / λ_min: only a body that may spin that fast pays for ω itself.
+  if (!(std::sqrt(momentum_squared) * inverse_moment_max * dt_s < M_PI) &&
+      !(AngularVelocity(model, state).norm() * dt_s < M_PI)) {
     return BodyFault::kSpinAliased;
   }
   return BodyFault::kNone;

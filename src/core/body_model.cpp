@@ -53,6 +53,12 @@ BodyModel::BodyModel(std::string name, std::vector<Particle> particles) : name_(
     inertia_ -= particle.mass_kg * CrossSquared(offset);
   }
 
+  // Finite inputs can still overflow here (a mass of 1e308 twice, 1e300 m).
+  if (!std::isfinite(mass_kg_) || !reference_com_m_.allFinite() || !inertia_.allFinite()) {
+    throw std::invalid_argument("body '" + name_ +
+                                "': total mass, centre of mass or inertia overflows (not finite)");
+  }
+
   // Principal frame: eigenvectors as the columns of a proper rotation R_BP.
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia_);
   Eigen::Matrix3d axes = solver.eigenvectors();
@@ -64,7 +70,9 @@ BodyModel::BodyModel(std::string name, std::vector<Particle> particles) : name_(
   Eigen::Vector3d in_range = Eigen::Vector3d::Zero();
   inverse_principal_moments_.setZero();
   for (int k = 0; k < 3; ++k) {
-    if (largest > 0.0 && principal_moments_[k] > kNullMomentRatio * largest) {
+    // A moment whose inverse overflows (a body 1e-155 m across) counts as null too.
+    if (largest > 0.0 && principal_moments_[k] > kNullMomentRatio * largest &&
+        std::isfinite(1.0 / principal_moments_[k])) {
       inverse_principal_moments_[k] = 1.0 / principal_moments_[k];
       in_range[k] = 1.0;
       ++rank_;

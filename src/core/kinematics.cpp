@@ -43,6 +43,15 @@ void ParticleVelocities(const BodyModel& model, const BodyState& state,
   }
 }
 
+std::optional<Eigen::Quaterniond> ToUnitQuaternion(double x, double y, double z, double w) {
+  const Eigen::Vector4d xyzw(x, y, z, w);
+  if (!xyzw.allFinite()) return std::nullopt;
+  const double largest = xyzw.cwiseAbs().maxCoeff();
+  if (largest == 0.0) return std::nullopt;
+  const Eigen::Vector4d unit = (xyzw / largest).normalized();
+  return Eigen::Quaterniond(unit[3], unit[0], unit[1], unit[2]);
+}
+
 BodyState StateFromTwist(const BodyModel& model, const Eigen::Vector3d& position,
                          const Eigen::Quaterniond& orientation,
                          const Eigen::Vector3d& linear_velocity,

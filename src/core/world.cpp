@@ -45,6 +45,11 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
     if (!names.insert(name).second) {
       throw std::invalid_argument("bodies[" + std::to_string(i) + "]: duplicate name '" + name + "'");
     }
+    const BodyFault fault = CheckState(models_[i], states_[i], options_.dt_s);
+    if (fault != BodyFault::kNone) {
+      throw std::invalid_argument("bodies[" + std::to_string(i) + "] (name '" + name +
+                                  "'): initial state is " + ToString(fault));
+    }
     if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
     gravity_loads_[i].AddCentralForce(models_[i].mass() * options_.gravity);
   }

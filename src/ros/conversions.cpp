@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <tf2_eigen/tf2_eigen.h>
 
+#include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/kinematics.h"
 
 namespace rigid_body_sim {
@@ -123,9 +125,39 @@ ConvertedWrench FromParticleWrench(const ParticleWrench& msg, const WrenchFrames
   result.wrench.couple = couple;
   // A stamp copied from a published state may differ from its t_n by the
   // nanosecond rounding; the world counts times within 1e-3 dt as equal.
-  result.wrench.start_s = msg.header.stamp.isZero() ? next_step_time_s
-                                                    : (msg.header.stamp - start_stamp).toSec();
+  // In signed nanoseconds: ros::Time's own difference throws beyond 2³¹ s.
+  const std::int64_t since_start_ns = static_cast<std::int64_t>(msg.header.stamp.toNSec()) -
+                                      static_cast<std::int64_t>(start_stamp.toNSec());
+  result.wrench.start_s =
+      msg.header.stamp.isZero() ? next_step_time_s : 1e-9 * static_cast<double>(since_start_ns);
   return result;
+}
+
+std::optional<core::BodyState> StateFromRequest(const core::BodyModel& model,
+                                                const geometry_msgs::Pose& pose,
+                                                const geometry_msgs::Twist& twist, double dt_s,
+                                                std::string* reason) {
+  const Eigen::Vector3d position(pose.position.x, pose.position.y, pose.position.z);
+  const Eigen::Vector3d linear = FromVector3Msg(twist.linear);
+  const Eigen::Vector3d angular = FromVector3Msg(twist.angular);
+  if (!position.allFinite() || !linear.allFinite() || !angular.allFinite()) {
+    *reason = "pose and twist must be finite";
+    return std::nullopt;
+  }
+  const geometry_msgs::Quaternion& q = pose.orientation;
+  const std::optional<Eigen::Quaterniond> orientation = core::ToUnitQuaternion(q.x, q.y, q.z, q.w);
+  if (!orientation) {
+    *reason = "pose.orientation must be a finite, non-zero quaternion (identity is w: 1)";
+    return std::nullopt;
+  }
+  const core::BodyState state = core::StateFromTwist(model, position, *orientation, linear, angular);
+  const core::BodyFault fault = core::CheckState(model, state, dt_s);
+  if (fault != core::BodyFault::kNone) {
+    *reason = std::string("the state would be ") + core::ToString(fault) +
+              " (speed must stay below c, |angular velocity|·dt below pi)";
+    return std::nullopt;
+  }
+  return state;
 }
 
 }  // namespace rigid_body_sim

@@ -7,6 +7,7 @@
 #include <set>
 #include <unordered_map>
 
+#include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
 
@@ -181,12 +182,14 @@ Eigen::Vector3d ReadOptionalVector3(const XmlRpcValue& body, const std::string& 
 Eigen::Quaterniond ReadOrientation(const XmlRpcValue& body) {
   if (!body.hasMember("orientation")) return Eigen::Quaterniond::Identity();
   const Eigen::Vector4d xyzw = ReadFiniteVector<4>(body["orientation"], "orientation");
-  // Hand-written quaternions are rounded; any clearly non-zero one is normalised.
-  if (xyzw.norm() < 1e-6) {
+  // Hand-written quaternions are rounded; any non-zero one is normalised.
+  const std::optional<Eigen::Quaterniond> unit =
+      core::ToUnitQuaternion(xyzw[0], xyzw[1], xyzw[2], xyzw[3]);
+  if (!unit) {
     throw SceneError("orientation must be a non-zero quaternion [x, y, z, w], got " +
                      Describe(body["orientation"]));
   }
-  return Eigen::Quaterniond(xyzw[3], xyzw[0], xyzw[1], xyzw[2]).normalized();
+  return *unit;
 }
 
 // One entry of `bodies`; errors name the key, the caller adds the entry.
@@ -216,8 +219,15 @@ void ParseBody(const XmlRpcValue& body, std::vector<core::BodyModel>* models,
   const Eigen::Vector3d angular_velocity = ReadOptionalVector3(body, "angular_velocity");
 
   models->emplace_back(name, std::move(particles));
-  initial_states->push_back(core::StateFromTwist(models->back(), position, orientation,
-                                           linear_velocity, angular_velocity));
+  const core::BodyState state = core::StateFromTwist(models->back(), position, orientation,
+                                                     linear_velocity, angular_velocity);
+  // The spin limit needs dt, which the world checks; here: overflow and c.
+  const core::BodyFault fault = core::CheckState(models->back(), state, 0.0);
+  if (fault != core::BodyFault::kNone) {
+    throw SceneError(std::string("linear_velocity/angular_velocity give an initial state that is ") +
+                     core::ToString(fault));
+  }
+  initial_states->push_back(state);
 }
 
 // Private parameters, each with its SPEC default; errors name "~key".

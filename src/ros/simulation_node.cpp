@@ -78,15 +78,6 @@ double Microseconds(std::chrono::steady_clock::duration duration) {
   return std::chrono::duration<double, std::micro>(duration).count();
 }
 
-bool AllFinite(const geometry_msgs::Pose& pose, const geometry_msgs::Twist& twist) {
-  const double values[] = {pose.position.x,    pose.position.y,    pose.position.z,
-                           pose.orientation.x, pose.orientation.y, pose.orientation.z,
-                           pose.orientation.w, twist.linear.x,     twist.linear.y,
-                           twist.linear.z,     twist.angular.x,    twist.angular.y,
-                           twist.angular.z};
-  return std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); });
-}
-
 }  // namespace
 
 SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
@@ -446,24 +437,10 @@ bool SimulationNode::OnSetBodyState(SetBodyState::Request& request,
     response.message = "unknown body '" + request.body + "'";
     return true;
   }
-  if (!AllFinite(request.pose, request.twist)) {
-    response.message = "pose and twist must be finite";
-    return true;
-  }
-  const geometry_msgs::Quaternion& q = request.pose.orientation;
-  const Eigen::Quaterniond orientation(q.w, q.x, q.y, q.z);
-  if (orientation.norm() < 1e-6) {
-    response.message = "pose.orientation must be a non-zero quaternion (identity is w: 1)";
-    return true;
-  }
-  const geometry_msgs::Twist& twist = request.twist;
-  world_.SetBodyState(
-      *body, core::StateFromTwist(world_.model(*body),
-                            Eigen::Vector3d(request.pose.position.x, request.pose.position.y,
-                                            request.pose.position.z),
-                            orientation.normalized(),
-                            Eigen::Vector3d(twist.linear.x, twist.linear.y, twist.linear.z),
-                            Eigen::Vector3d(twist.angular.x, twist.angular.y, twist.angular.z)));
+  const std::optional<core::BodyState> state = StateFromRequest(
+      world_.model(*body), request.pose, request.twist, world_.options().dt_s, &response.message);
+  if (!state) return true;
+  world_.SetBodyState(*body, *state);
   conservation_.Rebase(world_, *body);
   reported_faults_[*body] = core::BodyFault::kNone;
   response.success = true;

@@ -123,6 +123,12 @@ TEST(BodyModel, ValidationNamesTheEntryAndTheProblem) {
   ExpectRejected({{nan, {0, 0, 0}}}, "body 'handle': particles[0].mass must be finite and > 0, got nan");
   ExpectRejected({{1.0, {0, 0, 0}}, {1.0, {0, 0, 0}}, {1.0, {0, inf, 0}}},
                  "body 'handle': particles[2].position must be 3 finite numbers");
+  // Finite inputs whose sums or squares overflow.
+  const double huge = std::numeric_limits<double>::max();
+  ExpectRejected({{huge, {0, 0, 0}}, {huge, {1, 0, 0}}},
+                 "body 'handle': total mass, centre of mass or inertia overflows (not finite)");
+  ExpectRejected({{1.0, {0, 1e300, 0}}, {1.0, {0, -1e300, 0}}},
+                 "body 'handle': total mass, centre of mass or inertia overflows (not finite)");
 }
 
 }  // namespace

@@ -112,6 +112,15 @@ TEST(World, BadOptionsAreNamed) {
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), "dt must be > 0");
   }
+  std::vector<BodyModel> one = {test::PointBody()};
+  std::vector<BodyState> too_fast(1);
+  too_fast[0].linear_momentum = {2.0 * 3.5e8, 0.0, 0.0};  // 3.5e8 m/s
+  try {
+    World(one, too_fast, WorldOptions{});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()), "bodies[0] (name 'point'): initial state is faster_than_light");
+  }
   std::vector<BodyModel> twins = {test::RodBody(), test::RodBody()};
   try {
     World(twins, std::vector<BodyState>(2), WorldOptions{});

@@ -72,6 +72,11 @@ class BadInput : public ::testing::Test {
     warnings = new Warnings;
     log_sub = new ros::Subscriber(nh.subscribe("/rosout", 1000, &Warnings::Cb, warnings));
   }
+  static void TearDownTestSuite() {
+    delete log_sub;  // first: it calls into `warnings`
+    delete warnings;
+    delete diag;
+  }
 
   // The state must still be the initial one, and fresh: a ~bodies message
   // newer than `after` (so the node is alive and stepping).

@@ -2,6 +2,7 @@
 // x_i = x_CM + A r̄_i, v_i = v + ω × r_i).
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -30,6 +31,11 @@ void ParticlePositions(const BodyModel& model, const BodyState& state,
 // v_i = v + ω × (x_i − x_CM), world [m/s]; `velocities` is resized.
 void ParticleVelocities(const BodyModel& model, const BodyState& state,
                         std::vector<Eigen::Vector3d>* velocities);
+
+// The unit quaternion of (x, y, z, w) as written by a user, or nullopt when it
+// is zero or not finite. Scaled by its largest component first, so that huge
+// entries (1e300) do not overflow the norm.
+std::optional<Eigen::Quaterniond> ToUnitQuaternion(double x, double y, double z, double w);
 
 // A body state from a pose and a twist (world axes, COM), with p = M v and
 // L = I ω projected onto the range of I.

@@ -30,7 +30,8 @@ struct WorldOptions {
 class World {
  public:
   // Throws std::invalid_argument on an unknown integrator, dt <= 0, duplicate
-  // or empty body names, or a states/models size mismatch.
+  // or empty body names, a states/models size mismatch, or an initial state
+  // that CheckState rejects (named with the body and the reason).
   World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
         const WorldOptions& options);
 

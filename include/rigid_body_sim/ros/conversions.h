@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <optional>
 #include <string>
 #include <unordered_map>
 #include <vector>
@@ -72,5 +73,14 @@ struct ConvertedWrench {
 // stamp − start_stamp (exact: ros::Time subtraction is in nanoseconds).
 ConvertedWrench FromParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
                                    const ros::Time& start_stamp, double next_step_time_s);
+
+// The state a ~set_body_state request asks for (pose and twist of the COM,
+// world axes), or nullopt with `reason` set: every number finite, a non-zero
+// quaternion (normalised), and a state the world accepts (core::CheckState at
+// dt_s: below the speed of light, |ω|·dt < π, nothing that overflows).
+std::optional<core::BodyState> StateFromRequest(const core::BodyModel& model,
+                                                const geometry_msgs::Pose& pose,
+                                                const geometry_msgs::Twist& twist, double dt_s,
+                                                std::string* reason);
 
 }  // namespace rigid_body_sim

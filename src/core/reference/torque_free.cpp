@@ -26,9 +26,20 @@ namespace {
 
 constexpr double kSymmetricTolerance = 1e-12;
 
-double CarlsonRF(double x, double y, double z) { return boost::math::ellint_rf(x, y, z); }
+// NaN instead of an exception where Boost cannot evaluate (arguments out of
+// range after an absurd torque): the world then freezes that body as
+// non-finite, and nothing throws through a simulation step.
+using NanOnError = boost::math::policies::policy<
+    boost::math::policies::domain_error<boost::math::policies::ignore_error>,
+    boost::math::policies::pole_error<boost::math::policies::ignore_error>,
+    boost::math::policies::overflow_error<boost::math::policies::ignore_error>,
+    boost::math::policies::evaluation_error<boost::math::policies::ignore_error>>;
+
+double CarlsonRF(double x, double y, double z) {
+  return boost::math::ellint_rf(x, y, z, NanOnError());
+}
 double CarlsonRJ(double x, double y, double z, double p) {
-  return boost::math::ellint_rj(x, y, z, p);
+  return boost::math::ellint_rj(x, y, z, p, NanOnError());
 }
 
 // asin(q sin φ) for 0 <= q < 1 given 1 − q: near ±1 the argument is formed as
