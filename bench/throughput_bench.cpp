@@ -1,6 +1,7 @@
-// Throughput of World::Step (ns per body-step) for every integrator at 1,
-// 1,000 and 100,000 bodies, torque-free and with particle forces, and the
-// cost of per-particle output.
+// Throughput of World::Step (time per body-step) for every integrator at 1,
+// 1,000 and 100,000 bodies, torque-free and with particle forces; what the
+// skips save (bodies at rest, isotropic bodies, no wrench); and the cost of
+// per-particle output. Counters are seconds per body-step ("n" = ns).
 #include <string>
 #include <vector>
 
@@ -16,14 +17,18 @@ namespace {
 
 // Eight particles at the corners of a 0.2 × 0.3 × 0.4 m box, as a node scene
 // would have them, tumbling near the separatrix.
-World MakeWorld(const std::string& integrator, int bodies, bool forced) {
+enum class Motion { kTumbling, kAtRest };
+
+World MakeWorld(const std::string& integrator, int bodies, bool forced,
+                Motion motion = Motion::kTumbling, bool cubes = false) {
   std::vector<BodyModel> models;
   std::vector<BodyState> states(bodies);
   models.reserve(bodies);
+  const Eigen::Vector3d size = cubes ? Eigen::Vector3d(0.3, 0.3, 0.3) : Eigen::Vector3d(0.2, 0.3, 0.4);
   for (int i = 0; i < bodies; ++i) {
-    models.emplace_back("body" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2));
+    models.emplace_back("body" + std::to_string(i), MakeBox(1.0, size, 2));
     states[i].position = {0.01 * i, 0.0, 0.0};
-    states[i].angular_momentum = {0.001, 0.02, 0.001};
+    if (motion == Motion::kTumbling) states[i].angular_momentum = {0.001, 0.02, 0.001};
   }
   WorldOptions options;
   options.integrator = integrator;
@@ -48,10 +53,34 @@ void BM_WorldStep(benchmark::State& state, const std::string& integrator, bool f
     world.Step();
     benchmark::ClobberMemory();
   }
-  state.counters["ns_per_body_step"] = benchmark::Counter(
+  state.counters["per_body_step"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * bodies,
       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
+
+// The skips decided per body each step, against the tumbling box of
+// BM_WorldStep/casimir_splitting4/free in the same run: a body at rest with no
+// load is not stepped at all; a cube (isotropic) takes the exact rotation
+// about L alone.
+void BM_WorldStepAtRest(benchmark::State& state) {
+  const int bodies = static_cast<int>(state.range(0));
+  World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kAtRest);
+  for (auto _ : state) world.Step();
+  state.counters["per_body_step"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * bodies,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_WorldStepAtRest)->Arg(1000);
+
+void BM_WorldStepCubes(benchmark::State& state) {
+  const int bodies = static_cast<int>(state.range(0));
+  World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, true);
+  for (auto _ : state) world.Step();
+  state.counters["per_body_step"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * bodies,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK(BM_WorldStepCubes)->Arg(1000);
 
 // Particle positions for every body, as the node's ~particles output needs.
 void BM_ParticlePositions(benchmark::State& state) {
@@ -64,7 +93,7 @@ void BM_ParticlePositions(benchmark::State& state) {
       benchmark::DoNotOptimize(positions.data());
     }
   }
-  state.counters["ns_per_body"] = benchmark::Counter(
+  state.counters["per_body"] = benchmark::Counter(
       static_cast<double>(state.iterations()) * bodies,
       benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
