@@ -47,8 +47,6 @@ class World {
   // t_n = t_0 + n·dt, from the step count so it never drifts.
   double time() const { return options_.start_time_s + static_cast<double>(steps_) * options_.dt_s; }
   std::uint64_t step_count() const { return steps_; }
-  // Sets t_0 (the node sets it to the ROS time when stepping starts).
-  void SetStartTime(double start_time_s) { options_.start_time_s = start_time_s; }
 
   // Advances every body from t_n to t_(n+1) with the wrenches active at t_n.
   // A body whose state would break a CheckState bound keeps its last good
