@@ -27,17 +27,7 @@ targets=("$@")
 t0=$(date +%s)
 
 # ---- toolchain --------------------------------------------------------------
-need=()
-command -v clang++-14 >/dev/null || need+=(clang-14)
-dpkg-query -W -f='${Status}' libclang-rt-14-dev 2>/dev/null | grep -q 'install ok installed' ||
-  need+=(libclang-rt-14-dev)
-if [ ${#need[@]} -gt 0 ]; then
-  sudo_cmd=""
-  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-  echo "fuzz: installing ${need[*]}"
-  $sudo_cmd apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${need[@]}"
-fi
+bash "$repo/scripts/install_deps.sh" clang-14 libclang-rt-14-dev
 cxx=clang++-14
 
 # ---- generated message headers ----------------------------------------------
