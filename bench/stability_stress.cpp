@@ -307,15 +307,7 @@ struct LoadedDegenerate {
 };
 
 LoadedDegenerate RunLoadedDegenerate(const std::string& name, long steps, std::uint64_t seed) {
-  WorldOptions options;
-  options.integrator = name;
-  options.dt_s = kDt;
-  options.gravity = {0, 0, -9.81};
-  std::vector<BodyState> states(2);
-  states[0].orientation = test::kTilt;
-  states[0].angular_momentum = test::kTilt * Vector3d(0.0, 0.3, -0.2);
-  states[1].linear_momentum = {1.0, 0.0, 0.0};
-  World world({test::RodBody(), test::PointBody()}, states, options);
+  World world = test::RodAndParticleWorld(name, kDt);
   std::mt19937_64 rng(seed);
   LoadedDegenerate r;
   for (long n = 0; n < steps; ++n) {

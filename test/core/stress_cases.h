@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -13,6 +15,7 @@
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/reference/torque_free.h"
 #include "rigid_body_sim/core/world.h"
+#include "test_bodies.h"
 
 namespace rigid_body_sim::core::test {
 
@@ -81,6 +84,20 @@ inline bool DrawWrenches(std::mt19937_64* rng, double max_force, double max_coup
     }
   }
   return true;
+}
+
+// The collinear rod (tilted, tumbling) and a single particle (moving) in one
+// World under gravity: the degenerate bodies of the loaded stress.
+inline World RodAndParticleWorld(const std::string& integrator, double dt_s) {
+  WorldOptions options;
+  options.integrator = integrator;
+  options.dt_s = dt_s;
+  options.gravity = {0, 0, -9.81};
+  std::vector<BodyState> states(2);
+  states[0].orientation = kTilt;
+  states[0].angular_momentum = kTilt * Eigen::Vector3d(0.0, 0.3, -0.2);
+  states[1].linear_momentum = {1.0, 0.0, 0.0};
+  return World({RodBody(), PointBody()}, states, options);
 }
 
 }  // namespace rigid_body_sim::core::test

@@ -236,15 +236,7 @@ TEST(Stress, RodAndParticleUnderForcesAndCouplesKeepLInTheRangeOfI) {
   // couples along the rod and every couple on the particle are dropped)
   // redrawn every 100 steps, gravity on, 2e4 steps.
   for (const std::string& name : IntegratorNames()) {
-    WorldOptions options;
-    options.integrator = name;
-    options.dt_s = kDt;
-    options.gravity = {0, 0, -9.81};
-    std::vector<BodyState> states(2);
-    states[0].orientation = test::kTilt;
-    states[0].angular_momentum = test::kTilt * Vector3d(0.0, 0.3, -0.2);
-    states[1].linear_momentum = {1.0, 0.0, 0.0};
-    World world({test::RodBody(), test::PointBody()}, states, options);
+    World world = test::RodAndParticleWorld(name, kDt);
     std::mt19937_64 rng(7);
     for (int n = 0; n < 20000; ++n) {
       if (n % 100 == 0) {
