@@ -245,6 +245,7 @@ void SimulationNode::Publish() {
     BodyStateArray bodies;
     bodies.header.stamp = stamp;
     bodies.header.frame_id = settings_.world_frame;
+    bodies.bodies.reserve(world_.size());
     for (std::size_t body = 0; body < world_.size(); ++body) {
       bodies.bodies.push_back(ToBodyState(world_.model(body), world_.state(body)));
     }
