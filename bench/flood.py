@@ -18,7 +18,7 @@ import xmlrpc.client
 
 parser = argparse.ArgumentParser()
 repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-parser.add_argument("--workspace", default=os.path.join(repo, "build_ws"))
+parser.add_argument("--workspace", default=os.path.join(repo, ".build_ws"))
 parser.add_argument("--arrays", type=float, default=100000, help="wrenches/s sent in arrays")
 parser.add_argument("--entries", type=int, default=100, help="entries per array")
 parser.add_argument("--singles", type=float, default=20000, help="single messages/s")

@@ -22,7 +22,7 @@ CSV row per run to bench/results/node_load.csv.
   bench/node_load.py [--quick] [--workspace PATH] [--port 11395] [--out DIR]
 
 The script re-executes itself with PATH/devel/setup.bash sourced (default
-workspace: build_ws in the checkout). It and the master stay on core 0, the
+workspace: .build_ws in the checkout). It and the master stay on core 0, the
 node runs on core 1 (--node-cpu). Everything started is stopped at the end.
 """
 
@@ -50,8 +50,8 @@ NS = "/" + NODE_NAME
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="smaller scan, under a minute")
-    parser.add_argument("--workspace", default=os.path.join(REPO, "build_ws"),
-                        help="catkin workspace whose devel/setup.bash is sourced (default: build_ws in the repo)")
+    parser.add_argument("--workspace", default=os.path.join(REPO, ".build_ws"),
+                        help="catkin workspace whose devel/setup.bash is sourced (default: .build_ws in the repo)")
     parser.add_argument("--port", type=int, default=11395, help="port of the private ROS master")
     parser.add_argument("--node-cpu", type=int, default=1, help="core the node is pinned to (taskset -c)")
     parser.add_argument("--bench-cpu", type=int, default=0, help="core of this script and the master")

@@ -22,7 +22,7 @@ import xmlrpc.client
 
 parser = argparse.ArgumentParser()
 repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-parser.add_argument("--workspace", default=os.path.join(repo, "build_ws"))
+parser.add_argument("--workspace", default=os.path.join(repo, ".build_ws"))
 parser.add_argument("--duration", type=float, default=3600.0)
 parser.add_argument("--rate", type=float, default=200.0, help="wrench messages per second")
 parser.add_argument("--port", type=int, default=11431)

@@ -5,7 +5,7 @@
 # Pass --quick for a two-dt smoke run that writes to /tmp instead.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-$repo/build_ws}"
+ws="${RBS_WS:-$repo/.build_ws}"
 quick=""
 repetitions=5
 results="$repo/bench/results"

@@ -5,7 +5,7 @@
 # node's status line, once a second, shows that it is alive.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-$repo/build_ws}"
+ws="${RBS_WS:-$repo/.build_ws}"
 bash "$repo/scripts/build.sh"
 export PATH="/usr/bin:$PATH"
 set +u; source "$ws/devel/setup.bash"; set -u

@@ -6,7 +6,7 @@
 # leaves any running simulation alone.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-$repo/build_ws}"
+ws="${RBS_WS:-$repo/.build_ws}"
 settle_s="${1:-6}"
 port="${RBS_SCREENSHOT_PORT:-11399}"
 display=":${RBS_SCREENSHOT_DISPLAY:-97}"

@@ -3,7 +3,7 @@
 # (gtest for the core, rostest for the node) and exits non-zero on any failure.
 set -euo pipefail
 repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-$repo/build_ws}"
+ws="${RBS_WS:-$repo/.build_ws}"
 bash "$repo/scripts/build.sh" -j2
 export PATH="/usr/bin:$PATH"
 cd "$ws"
