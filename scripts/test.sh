@@ -8,6 +8,10 @@ bash "$repo/scripts/build.sh" -j2
 export PATH="/usr/bin:$PATH"
 cd "$ws"
 set +u; source devel/setup.bash; set -u
+# The run command finds the launch file by package and name: it must resolve,
+# and to exactly one file (a workspace visible inside the checkout once made
+# roslaunch's search loop through the link back to it).
+roslaunch --nodes rigid_body_sim rigid_body_sim.launch > /dev/null
 rm -rf build/test_results
 catkin_make run_tests -j1
 catkin_test_results build/test_results
