@@ -69,11 +69,7 @@ class BulletPeer final : public Peer {
 
   void Setup(const Scene& scene, int copies, double dt_s) override {
     Release();
-    scene_ = scene;
-    model_.emplace(scene_.name, scene_.particles);
-    loads_.emplace(scene_, *model_);
-    dt_s_ = dt_s;
-    step_ = 0;
+    run_.Start(scene, dt_s);
 
     collision_configuration_ = std::make_unique<btDefaultCollisionConfiguration>();
     dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_configuration_.get());
@@ -84,19 +80,19 @@ class BulletPeer final : public Peer {
     world_->setGravity(btVector3(0, 0, 0));
     shape_ = std::make_unique<btEmptyShape>();
 
-    const BodyState& s = scene_.initial;
-    const Eigen::Quaterniond principal = s.orientation * model_->principal_axes();
+    const BodyState& s = run_.scene.initial;
+    const Eigen::Quaterniond principal = s.orientation * run_.model->principal_axes();
     btTransform start;
     start.setOrigin(ToBullet(s.position));
     start.setRotation(btQuaternion(principal.x(), principal.y(), principal.z(), principal.w()));
-    btRigidBody::btRigidBodyConstructionInfo info(model_->mass(), nullptr, shape_.get(),
-                                                  ToBullet(model_->principal_moments()));
+    btRigidBody::btRigidBodyConstructionInfo info(run_.model->mass(), nullptr, shape_.get(),
+                                                  ToBullet(run_.model->principal_moments()));
     info.m_startWorldTransform = start;
     info.m_linearDamping = 0;
     info.m_angularDamping = 0;
     info.m_additionalDamping = false;
-    const btVector3 v = ToBullet(model_->inverse_mass() * s.linear_momentum);
-    const btVector3 omega = ToBullet(AngularVelocity(*model_, s));
+    const btVector3 v = ToBullet(run_.model->inverse_mass() * s.linear_momentum);
+    const btVector3 omega = ToBullet(AngularVelocity(*run_.model, s));
     bodies_.reserve(copies);
     for (int c = 0; c < copies; ++c) {
       auto body = std::make_unique<btRigidBody>(info);
@@ -110,23 +106,23 @@ class BulletPeer final : public Peer {
   }
 
   void Step() override {
-    if (!loads_->empty()) {
-      loads_->BeginStep(step_ * dt_s_);
+    if (!run_.loads->empty()) {
+      run_.loads->BeginStep(run_.step * run_.dt_s);
       for (auto& body : bodies_) {
         const Eigen::Matrix3d rotation = BodyOrientation(*body).toRotationMatrix();
-        loads_->ForEachForce(rotation, [&](const Eigen::Vector3d& f, const Eigen::Vector3d& arm) {
+        run_.loads->ForEachForce(rotation, [&](const Eigen::Vector3d& f, const Eigen::Vector3d& arm) {
           body->applyForce(ToBullet(f), ToBullet(arm));
         });
-        body->applyTorque(ToBullet(loads_->couple()));
+        body->applyTorque(ToBullet(run_.loads->couple()));
       }
     }
-    world_->stepSimulation(dt_s_, 0);
-    ++step_;
+    world_->stepSimulation(run_.dt_s, 0);
+    ++run_.step;
   }
 
   PeerState State(int copy) const override {
     const btRigidBody& body = *bodies_[copy];
-    return StateFromTwist(*model_, FromBullet(body.getCenterOfMassPosition()), BodyOrientation(body),
+    return StateFromTwist(*run_.model, FromBullet(body.getCenterOfMassPosition()), BodyOrientation(body),
                           FromBullet(body.getLinearVelocity()), FromBullet(body.getAngularVelocity()));
   }
 
@@ -135,7 +131,7 @@ class BulletPeer final : public Peer {
   Eigen::Quaterniond BodyOrientation(const btRigidBody& body) const {
     const btQuaternion q = body.getOrientation();
     const Eigen::Quaterniond principal(q.w(), q.x(), q.y(), q.z());
-    return (principal * model_->principal_axes().conjugate()).normalized();
+    return (principal * run_.model->principal_axes().conjugate()).normalized();
   }
 
   void Release() {
@@ -151,11 +147,7 @@ class BulletPeer final : public Peer {
 
   std::string name_;
   int flags_;
-  Scene scene_;
-  std::optional<BodyModel> model_;
-  std::optional<PeerLoads> loads_;
-  double dt_s_ = 0.0;
-  long step_ = 0;
+  PeerRun run_;
   std::unique_ptr<btDefaultCollisionConfiguration> collision_configuration_;
   std::unique_ptr<btCollisionDispatcher> dispatcher_;
   std::unique_ptr<btBroadphaseInterface> broadphase_;

@@ -64,11 +64,7 @@ class MujocoPeer final : public Peer {
 
   void Setup(const Scene& scene, int copies, double dt_s) override {
     Release();
-    scene_ = scene;
-    model_.emplace(scene_.name, scene_.particles);
-    loads_.emplace(scene_, *model_);
-    dt_s_ = dt_s;
-    step_ = 0;
+    run_.Start(scene, dt_s);
     const int per_model = bodies_per_model_ > 0 ? bodies_per_model_ : copies;
     for (int first = 0; first < copies; first += per_model) {
       Compile(std::min(per_model, copies - first));
@@ -82,9 +78,9 @@ class MujocoPeer final : public Peer {
         copies_.push_back({m, body, model->jnt_qposadr[joint], model->jnt_dofadr[joint]});
       }
     }
-    const BodyState& s = scene_.initial;
-    const Eigen::Vector3d v = model_->inverse_mass() * s.linear_momentum;
-    const Eigen::Vector3d omega_body = s.orientation.conjugate() * AngularVelocity(*model_, s);
+    const BodyState& s = run_.scene.initial;
+    const Eigen::Vector3d v = run_.model->inverse_mass() * s.linear_momentum;
+    const Eigen::Vector3d omega_body = s.orientation.conjugate() * AngularVelocity(*run_.model, s);
     for (std::size_t c = 0; c < copies_.size(); ++c) {
       mjtNum* q = Qpos(c);
       mjtNum* u = Qvel(c);
@@ -101,14 +97,14 @@ class MujocoPeer final : public Peer {
   }
 
   void Step() override {
-    if (!loads_->empty()) {
-      loads_->BeginStep(step_ * dt_s_);
+    if (!run_.loads->empty()) {
+      run_.loads->BeginStep(run_.step * run_.dt_s);
       for (std::size_t c = 0; c < copies_.size(); ++c) {
         // qpos is the pose at the start of this step; d->xquat is not: mj_step
         // computed it before integrating.
         const Eigen::Matrix3d rotation = Orientation(c).toRotationMatrix();
         Eigen::Vector3d force, torque;
-        loads_->Wrench(rotation, &force, &torque);
+        run_.loads->Wrench(rotation, &force, &torque);
         mjtNum* wrench = models_[copies_[c].model].data->xfrc_applied + 6 * copies_[c].body;
         for (int i = 0; i < 3; ++i) {
           wrench[i] = force[i];
@@ -117,14 +113,14 @@ class MujocoPeer final : public Peer {
       }
     }
     for (const Compiled& m : models_) mj_step(m.model, m.data);
-    ++step_;
+    ++run_.step;
   }
 
   PeerState State(int copy) const override {
     const mjtNum* q = Qpos(copy);
     const mjtNum* u = Qvel(copy);
     const Eigen::Quaterniond orientation = Orientation(copy);
-    return StateFromTwist(*model_, Eigen::Vector3d(q[0], q[1], q[2]), orientation,
+    return StateFromTwist(*run_.model, Eigen::Vector3d(q[0], q[1], q[2]), orientation,
                           Eigen::Vector3d(u[0], u[1], u[2]),
                           orientation * Eigen::Vector3d(u[3], u[4], u[5]));
   }
@@ -148,16 +144,16 @@ class MujocoPeer final : public Peer {
 
   std::string Mjcf(int bodies) const {
     static const char* const kIntegratorNames[] = {"Euler", "RK4", "implicit"};
-    const Eigen::Vector3d& moments = model_->principal_moments();
-    const Eigen::Quaterniond& axes = model_->principal_axes();
+    const Eigen::Vector3d& moments = run_.model->principal_moments();
+    const Eigen::Quaterniond& axes = run_.model->principal_axes();
     std::ostringstream inertial;
-    inertial << "<inertial pos=\"0 0 0\" mass=\"" << Exact(model_->mass()) << "\" quat=\""
+    inertial << "<inertial pos=\"0 0 0\" mass=\"" << Exact(run_.model->mass()) << "\" quat=\""
              << Exact(axes.w()) << ' ' << Exact(axes.x()) << ' ' << Exact(axes.y()) << ' '
              << Exact(axes.z()) << "\" diaginertia=\"" << Exact(moments[0]) << ' '
              << Exact(moments[1]) << ' ' << Exact(moments[2]) << "\"/>";
     std::ostringstream xml;
     xml << "<mujoco model=\"rbs_bench\">\n"
-        << "<option timestep=\"" << Exact(dt_s_) << "\" gravity=\"0 0 0\" integrator=\""
+        << "<option timestep=\"" << Exact(run_.dt_s) << "\" gravity=\"0 0 0\" integrator=\""
         << kIntegratorNames[integrator_] << "\">\n"
         << "<flag contact=\"disable\"/>\n</option>\n<worldbody>\n";
     for (int b = 0; b < bodies; ++b) {
@@ -199,11 +195,7 @@ class MujocoPeer final : public Peer {
   std::string name_;
   mjtIntegrator integrator_;
   int bodies_per_model_;
-  Scene scene_;
-  std::optional<BodyModel> model_;
-  std::optional<PeerLoads> loads_;
-  double dt_s_ = 0.0;
-  long step_ = 0;
+  PeerRun run_;
   std::vector<Compiled> models_;
   std::vector<Copy> copies_;
 };

@@ -69,11 +69,7 @@ class OdePeer final : public Peer {
   void Setup(const Scene& scene, int copies, double dt_s) override {
     InitializeOdeOnce();
     Release();
-    scene_ = scene;
-    model_.emplace(scene_.name, scene_.particles);
-    loads_.emplace(scene_, *model_);
-    dt_s_ = dt_s;
-    step_ = 0;
+    run_.Start(scene, dt_s);
 
     world_ = dWorldCreate();
     dWorldSetGravity(world_, 0, 0, 0);
@@ -83,14 +79,14 @@ class OdePeer final : public Peer {
       throw std::runtime_error(name_ + ": this ODE build clamps the angular speed by default");
     }
 
-    const Eigen::Matrix3d& I = model_->inertia();
+    const Eigen::Matrix3d& I = run_.model->inertia();
     dMass mass;
     dMassSetZero(&mass);
-    dMassSetParameters(&mass, model_->mass(), 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1),
+    dMassSetParameters(&mass, run_.model->mass(), 0, 0, 0, I(0, 0), I(1, 1), I(2, 2), I(0, 1),
                        I(0, 2), I(1, 2));
-    const BodyState& s = scene_.initial;
-    const Eigen::Vector3d v = model_->inverse_mass() * s.linear_momentum;
-    const Eigen::Vector3d omega = AngularVelocity(*model_, s);
+    const BodyState& s = run_.scene.initial;
+    const Eigen::Vector3d v = run_.model->inverse_mass() * s.linear_momentum;
+    const Eigen::Vector3d omega = AngularVelocity(*run_.model, s);
     const dQuaternion q = {s.orientation.w(), s.orientation.x(), s.orientation.y(),
                            s.orientation.z()};
     bodies_.reserve(copies);
@@ -108,26 +104,26 @@ class OdePeer final : public Peer {
   }
 
   void Step() override {
-    if (!loads_->empty()) {
-      loads_->BeginStep(step_ * dt_s_);
-      const Eigen::Vector3d& couple = loads_->couple();
+    if (!run_.loads->empty()) {
+      run_.loads->BeginStep(run_.step * run_.dt_s);
+      const Eigen::Vector3d& couple = run_.loads->couple();
       for (const dBodyID body : bodies_) {
         const Eigen::Matrix3d rotation = Orientation(body).toRotationMatrix();
         const Eigen::Vector3d com = FromOde(dBodyGetPosition(body));
-        loads_->ForEachForce(rotation, [&](const Eigen::Vector3d& f, const Eigen::Vector3d& arm) {
+        run_.loads->ForEachForce(rotation, [&](const Eigen::Vector3d& f, const Eigen::Vector3d& arm) {
           const Eigen::Vector3d at = com + arm;
           dBodyAddForceAtPos(body, f.x(), f.y(), f.z(), at.x(), at.y(), at.z());
         });
         dBodyAddTorque(body, couple.x(), couple.y(), couple.z());
       }
     }
-    dWorldQuickStep(world_, dt_s_);
-    ++step_;
+    dWorldQuickStep(world_, run_.dt_s);
+    ++run_.step;
   }
 
   PeerState State(int copy) const override {
     const dBodyID body = bodies_[copy];
-    return StateFromTwist(*model_, FromOde(dBodyGetPosition(body)), Orientation(body),
+    return StateFromTwist(*run_.model, FromOde(dBodyGetPosition(body)), Orientation(body),
                           FromOde(dBodyGetLinearVel(body)), FromOde(dBodyGetAngularVel(body)));
   }
 
@@ -146,11 +142,7 @@ class OdePeer final : public Peer {
   std::string name_;
   bool gyroscopic_;
   bool finite_rotation_;
-  Scene scene_;
-  std::optional<BodyModel> model_;
-  std::optional<PeerLoads> loads_;
-  double dt_s_ = 0.0;
-  long step_ = 0;
+  PeerRun run_;
   dWorldID world_ = nullptr;
   std::vector<dBodyID> bodies_;
 };

@@ -4,6 +4,7 @@
 // integrators and not from how the loads were computed.
 #pragma once
 
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
@@ -50,6 +51,24 @@ class PeerLoads {
   // ForcesAt with the identity rotation: world forces as they are, body-axes
   // forces still in body axes (rotated per copy in ForEachForce).
   std::vector<AppliedForce> step_forces_;
+};
+
+// What every peer keeps of the scene it steps: the scene, its body model, the
+// loads, dt and the step count (simulation time = step · dt).
+struct PeerRun {
+  void Start(const Scene& new_scene, double new_dt_s) {
+    scene = new_scene;
+    model.emplace(scene.name, scene.particles);
+    loads.emplace(scene, *model);
+    dt_s = new_dt_s;
+    step = 0;
+  }
+
+  Scene scene;
+  std::optional<BodyModel> model;
+  std::optional<PeerLoads> loads;
+  double dt_s = 0.0;
+  long step = 0;
 };
 
 }  // namespace rigid_body_sim::bench
