@@ -17,6 +17,7 @@
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/reference/constant_load.h"
 #include "rigid_body_sim/core/reference/free_body.h"
+#include "rigid_body_sim/core/world.h"
 #include "scene.h"
 #include "scene_load.h"
 
@@ -58,17 +59,49 @@ struct FlipCounter {
 
 long StepCount(const Scene& scene, double dt) { return std::lround(scene.duration_s / dt); }
 
+// Scenes that core::World can express (torque-free, a constant couple) run
+// through World::Step, what the node runs: skips, fault checks and the
+// batched free-body step. The time-varying forced scene runs through
+// Integrator::Step with its SceneLoad.
+bool RunsInWorld(const Scene& scene) { return scene.forces.empty(); }
+
+World MakeSceneWorld(const Scene& scene, const std::string& integrator, double dt, int bodies) {
+  std::vector<BodyModel> models;
+  for (int i = 0; i < bodies; ++i) models.emplace_back(scene.name + std::to_string(i), scene.particles);
+  WorldOptions options;
+  options.integrator = integrator;
+  options.dt_s = dt;
+  World world(std::move(models), std::vector<BodyState>(bodies, scene.initial), options);
+  if (!scene.constant_couple.isZero()) {
+    for (int i = 0; i < bodies; ++i) {
+      ParticleWrench couple;
+      couple.body = i;
+      couple.couple = scene.constant_couple;
+      world.wrenches().Hold(couple);
+    }
+  }
+  return world;
+}
+
 // Our integrator on one body over the whole scene.
-BodyState RunOurs(const Scene& scene, const BodyModel& model, const Integrator& integrator,
+BodyState RunOurs(const Scene& scene, const BodyModel& model, const std::string& integrator_name,
                   double dt, FlipCounter* flips) {
-  SceneLoad load(scene, model);
-  const bool loaded = !scene.forces.empty() || !scene.constant_couple.isZero();
-  BodyState state = scene.initial;
   const long steps = StepCount(scene, dt);
-  if (flips) flips->Observe(state, 0.0, dt);
+  if (flips) flips->Observe(scene.initial, 0.0, dt);
+  if (RunsInWorld(scene)) {
+    World world = MakeSceneWorld(scene, integrator_name, dt, 1);
+    for (long n = 0; n < steps; ++n) {
+      world.Step();
+      if (flips) flips->Observe(world.state(0), (n + 1) * dt, dt);
+    }
+    return world.state(0);
+  }
+  const auto integrator = MakeIntegrator(integrator_name);
+  SceneLoad load(scene, model);
+  BodyState state = scene.initial;
   for (long n = 0; n < steps; ++n) {
     load.set_step_start(n * dt);
-    integrator.Step(model, loaded ? &load : nullptr, dt, &state);
+    integrator->Step(model, &load, dt, &state);
     if (flips) flips->Observe(state, (n + 1) * dt, dt);
   }
   return state;
@@ -98,14 +131,18 @@ double TimePerBodyStep(long max_steps, StepAll step_all) {
   return samples[samples.size() / 2];
 }
 
-double TimeOurs(const Scene& scene, const BodyModel& model, const Integrator& integrator,
+double TimeOurs(const Scene& scene, const BodyModel& model, const std::string& integrator_name,
                 double dt, long steps) {
+  if (RunsInWorld(scene)) {
+    World world = MakeSceneWorld(scene, integrator_name, dt, kTimedBodies);
+    return TimePerBodyStep(steps, [&](long) { world.Step(); });
+  }
+  const auto integrator = MakeIntegrator(integrator_name);
   SceneLoad load(scene, model);
-  const bool loaded = !scene.forces.empty() || !scene.constant_couple.isZero();
   std::vector<BodyState> states(kTimedBodies, scene.initial);
   return TimePerBodyStep(steps, [&](long n) {
     load.set_step_start(n * dt);
-    for (BodyState& state : states) integrator.Step(model, loaded ? &load : nullptr, dt, &state);
+    for (BodyState& state : states) integrator->Step(model, &load, dt, &state);
   });
 }
 
@@ -226,10 +263,9 @@ int main(int argc, char** argv) {
       const BodyState& expected = reference.at_end[d];
       const long timed_steps = std::min<long>(100, StepCount(scene, dt));
       for (const std::string& name : IntegratorNames()) {
-        const auto integrator = MakeIntegrator(name);
         FlipCounter flips;
-        const BodyState final_state = RunOurs(scene, model, *integrator, dt, track_flips ? &flips : nullptr);
-        const double ns = TimeOurs(scene, model, *integrator, dt, timed_steps);
+        const BodyState final_state = RunOurs(scene, model, name, dt, track_flips ? &flips : nullptr);
+        const double ns = TimeOurs(scene, model, name, dt, timed_steps);
         WriteRow(csv, scene, "rigid_body_sim", name, dt, Compare(model, final_state, expected),
                  ns, flips.times, reference);
       }

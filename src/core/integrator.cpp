@@ -13,6 +13,24 @@
 
 namespace rigid_body_sim::core {
 
+BodyFault Integrator::StepFreeChecked(const BodyModel& model, double dt_s, BodyState* state) const {
+  const BodyState before = *state;
+  Step(model, nullptr, dt_s, state);
+  const BodyFault fault = CheckState(model, *state, dt_s);
+  if (fault != BodyFault::kNone) *state = before;
+  return fault;
+}
+
+void Integrator::StepFree(const std::vector<BodyModel>& models,
+                          const std::vector<std::size_t>& bodies, double dt_s,
+                          std::vector<BodyState>* states,
+                          std::vector<std::pair<std::size_t, BodyFault>>* faults) const {
+  for (const std::size_t body : bodies) {
+    const BodyFault fault = StepFreeChecked(models[body], dt_s, &(*states)[body]);
+    if (fault != BodyFault::kNone) faults->emplace_back(body, fault);
+  }
+}
+
 const char* const kDefaultIntegrator = "casimir_splitting4";
 
 const std::vector<std::string>& IntegratorNames() {

@@ -66,6 +66,7 @@ std::optional<std::size_t> World::FindBody(const std::string& name) const {
 void World::Step() {
   wrenches_.Reduce(time(), options_.wrench_timeout_s, kTimeToleranceInSteps * options_.dt_s,
                    models_, &loads_, &loaded_);
+  free_bodies_.clear();
   for (std::size_t i = 0; i < models_.size(); ++i) {
     if (faults_[i] != BodyFault::kNone) continue;
     const BodyModel& model = models_[i];
@@ -82,22 +83,38 @@ void World::Step() {
       load = &gravity_loads_[i];
     } else if (state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
       continue;  // at rest and unloaded: nothing can move it, so skip the scheme
+    } else if (model.is_full_rank()) {
+      free_bodies_.push_back(i);  // stepped below, all together, so a scheme can batch them
+      continue;
     }
     const BodyState before = state;
     integrator_->Step(model, load, options_.dt_s, &state);
-    if (!model.is_full_rank()) {
-      // Keep L in the range of I, so that the published L equals I ω.
-      const Eigen::Matrix3d a = state.orientation.toRotationMatrix();
-      state.angular_momentum = a * (model.range_projector() * (a.transpose() * state.angular_momentum));
-    }
-    const BodyFault fault = CheckState(model, state, options_.dt_s);
-    if (fault != BodyFault::kNone) {
-      state = before;
-      faults_[i] = fault;
-      ++frozen_count_;
-    }
+    FinishStep(i, before);
   }
+  free_faults_.clear();
+  integrator_->StepFree(models_, free_bodies_, options_.dt_s, &states_, &free_faults_);
+  for (const auto& [body, fault] : free_faults_) Freeze(body, fault);
   ++steps_;
+}
+
+void World::FinishStep(std::size_t body, const BodyState& before) {
+  const BodyModel& model = models_[body];
+  BodyState& state = states_[body];
+  if (!model.is_full_rank()) {
+    // Keep L in the range of I, so that the published L equals I ω.
+    const Eigen::Matrix3d a = state.orientation.toRotationMatrix();
+    state.angular_momentum = a * (model.range_projector() * (a.transpose() * state.angular_momentum));
+  }
+  const BodyFault fault = CheckState(model, state, options_.dt_s);
+  if (fault != BodyFault::kNone) {
+    state = before;
+    Freeze(body, fault);
+  }
+}
+
+void World::Freeze(std::size_t body, BodyFault fault) {
+  faults_[body] = fault;
+  ++frozen_count_;
 }
 
 void World::Reset() {

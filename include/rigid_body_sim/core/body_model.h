@@ -62,19 +62,21 @@ class BodyModel {
   bool is_isotropic() const { return isotropic_; }
 
  private:
-  std::string name_;
+  // What a free body's step reads comes first, within 80 bytes: scenes of
+  // 10⁴–10⁵ bodies step from memory, and this halves the lines it touches.
   double mass_kg_ = 0.0;
+  int rank_ = 0;
+  bool isotropic_ = false;
+  Eigen::Vector3d inverse_principal_moments_;
+  Eigen::Quaterniond principal_axes_;
+  std::string name_;
   std::vector<double> masses_kg_;
   Eigen::Vector3d reference_com_m_;
   std::vector<Eigen::Vector3d> offsets_m_;
   Eigen::Matrix3d inertia_;
   Eigen::Matrix3d inverse_inertia_;
   Eigen::Vector3d principal_moments_;
-  Eigen::Vector3d inverse_principal_moments_;
-  Eigen::Quaterniond principal_axes_;
   Eigen::Matrix3d range_projector_;
-  int rank_ = 0;
-  bool isotropic_ = false;
 };
 
 }  // namespace rigid_body_sim::core

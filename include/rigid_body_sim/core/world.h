@@ -71,6 +71,12 @@ class World {
   std::uint64_t dropped_couple_count() const { return dropped_couples_; }
 
  private:
+  // After a body's step: L projected into the range of a rank-deficient I,
+  // then the CheckState bounds (a body that breaks one gets `before` back and
+  // is frozen).
+  void FinishStep(std::size_t body, const BodyState& before);
+  void Freeze(std::size_t body, BodyFault fault);
+
   std::vector<BodyModel> models_;
   std::vector<BodyState> initial_states_;
   std::vector<BodyState> states_;
@@ -81,6 +87,9 @@ class World {
   std::vector<HeldLoads> gravity_loads_;  // M g alone, for bodies without wrenches
   std::vector<char> loaded_;
   std::vector<BodyFault> faults_;
+  // This step's full-rank bodies without load, for StepFree, and its faults.
+  std::vector<std::size_t> free_bodies_;
+  std::vector<std::pair<std::size_t, BodyFault>> free_faults_;
   std::size_t frozen_count_ = 0;
   bool has_gravity_ = false;
   std::uint64_t steps_ = 0;

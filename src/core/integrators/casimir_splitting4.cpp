@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "casimir_free_lanes.h"
 #include "casimir_step.h"
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 
@@ -54,6 +55,37 @@ void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load,
   CasimirStrangStep(model, split, load, 0.0, outer, state);
   CasimirStrangStep(model, split, load, outer, inner, state);
   CasimirStrangStep(model, split, load, outer + inner, outer, state);
+}
+
+void CasimirSplitting4Integrator::StepFree(
+    const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies, double dt_s,
+    std::vector<BodyState>* states, std::vector<std::pair<std::size_t, BodyFault>>* faults) const {
+  FreeLanes lanes;
+  std::size_t lane_bodies[kFreeLanes];
+  std::size_t filled = 0;
+  const auto step_lanes = [&] {
+    CasimirFreeStep4(dt_s, &lanes);
+    for (std::size_t l = 0; l < filled; ++l) {
+      if (!lanes.Store(l, &(*states)[lane_bodies[l]])) {
+        faults->emplace_back(lane_bodies[l], BodyFault::kNonFinite);
+      }
+    }
+    filled = 0;
+  };
+  for (const std::size_t body : bodies) {
+    const BodyModel& model = models[body];
+    BodyState& state = (*states)[body];
+    if (!FitsFreeLanes(model, state, dt_s)) {
+      // Too fast for the lanes' series: the scalar step.
+      const BodyFault fault = StepFreeChecked(model, dt_s, &state);
+      if (fault != BodyFault::kNone) faults->emplace_back(body, fault);
+      continue;
+    }
+    lanes.Load(filled, model, state);
+    lane_bodies[filled++] = body;
+    if (filled == kFreeLanes) step_lanes();
+  }
+  if (filled > 0) step_lanes();
 }
 
 }  // namespace rigid_body_sim::core

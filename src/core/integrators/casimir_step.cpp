@@ -13,13 +13,6 @@ void HalfKick(const Load& load, double t_s, double h, BodyState* state) {
 
 }  // namespace
 
-CasimirSplit::CasimirSplit(const BodyModel& model) {
-  const Eigen::Vector3d& inverse = model.inverse_principal_moments();
-  casimir = inverse[1];
-  axis1 = inverse[0] - casimir;
-  axis3 = inverse[2] - casimir;
-}
-
 void CasimirStrangStep(const BodyModel& model, const CasimirSplit& split, const Load* load,
                        double t_offset_s, double h, BodyState* state) {
   if (load != nullptr) HalfKick(*load, t_offset_s, h, state);

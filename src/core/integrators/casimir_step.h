@@ -14,7 +14,10 @@ namespace rigid_body_sim::core {
 // L, and the coefficients 1/λ_k − c of the axis-1 and axis-3 flows (a null
 // moment's inverse counts as 0, so a particle or a rod needs no special case).
 struct CasimirSplit {
-  explicit CasimirSplit(const BodyModel& model);
+  explicit CasimirSplit(const BodyModel& model)
+      : casimir(model.inverse_principal_moments()[1]),
+        axis1(model.inverse_principal_moments()[0] - casimir),
+        axis3(model.inverse_principal_moments()[2] - casimir) {}
   double casimir;  // c [1/(kg m²)]
   double axis1;    // 1/λ_1 − c
   double axis3;    // 1/λ_3 − c
