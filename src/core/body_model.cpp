@@ -22,69 +22,73 @@ Eigen::Matrix3d CrossSquared(const Eigen::Vector3d& r) {
 
 }  // namespace
 
-BodyModel::BodyModel(std::string name, std::vector<Particle> particles) : name_(std::move(name)) {
+BodyModel::BodyModel(std::string name, std::vector<Particle> particles) {
+  auto details = std::make_shared<Details>();
+  Details& d = *details;
+  d.name = std::move(name);
   if (particles.empty()) {
-    throw std::invalid_argument("body '" + name_ + "': particles must not be empty");
+    throw std::invalid_argument("body '" + d.name + "': particles must not be empty");
   }
   for (std::size_t i = 0; i < particles.size(); ++i) {
     const Particle& particle = particles[i];
     if (!std::isfinite(particle.mass_kg) || particle.mass_kg <= 0.0) {
       std::ostringstream got;
       got << particle.mass_kg;
-      Reject(name_, i, "mass must be finite and > 0, got " + got.str());
+      Reject(d.name, i, "mass must be finite and > 0, got " + got.str());
     }
-    if (!particle.position_m.allFinite()) Reject(name_, i, "position must be 3 finite numbers");
+    if (!particle.position_m.allFinite()) Reject(d.name, i, "position must be 3 finite numbers");
   }
 
   // Seed "pre-computation": M, x̄_CM, r̄_i, Ī = Σ −m_i r̃̄_i r̃̄_i.
   Eigen::Vector3d weighted_sum = Eigen::Vector3d::Zero();
-  masses_kg_.reserve(particles.size());
+  d.masses_kg.reserve(particles.size());
   for (const Particle& particle : particles) {
     mass_kg_ += particle.mass_kg;
     weighted_sum += particle.mass_kg * particle.position_m;
-    masses_kg_.push_back(particle.mass_kg);
+    d.masses_kg.push_back(particle.mass_kg);
   }
-  reference_com_m_ = weighted_sum / mass_kg_;
-  inertia_.setZero();
-  offsets_m_.reserve(particles.size());
+  d.reference_com_m = weighted_sum / mass_kg_;
+  d.inertia.setZero();
+  d.offsets_m.reserve(particles.size());
   for (const Particle& particle : particles) {
-    const Eigen::Vector3d offset = particle.position_m - reference_com_m_;
-    offsets_m_.push_back(offset);
-    inertia_ -= particle.mass_kg * CrossSquared(offset);
+    const Eigen::Vector3d offset = particle.position_m - d.reference_com_m;
+    d.offsets_m.push_back(offset);
+    d.inertia -= particle.mass_kg * CrossSquared(offset);
   }
 
   // Finite inputs can still overflow here (a mass of 1e308 twice, 1e300 m).
-  if (!std::isfinite(mass_kg_) || !reference_com_m_.allFinite() || !inertia_.allFinite()) {
-    throw std::invalid_argument("body '" + name_ +
+  if (!std::isfinite(mass_kg_) || !d.reference_com_m.allFinite() || !d.inertia.allFinite()) {
+    throw std::invalid_argument("body '" + d.name +
                                 "': total mass, centre of mass or inertia overflows (not finite)");
   }
 
   // Principal frame: eigenvectors as the columns of a proper rotation R_BP.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(inertia_);
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(d.inertia);
   Eigen::Matrix3d axes = solver.eigenvectors();
   if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
   principal_axes_ = Eigen::Quaterniond(axes).normalized();
-  principal_moments_ = solver.eigenvalues();
+  d.principal_moments = solver.eigenvalues();
 
-  const double largest = principal_moments_.maxCoeff();
+  const double largest = d.principal_moments.maxCoeff();
   Eigen::Vector3d in_range = Eigen::Vector3d::Zero();
   inverse_principal_moments_.setZero();
   for (int k = 0; k < 3; ++k) {
     // A moment whose inverse overflows (a body 1e-155 m across) counts as null too.
-    if (largest > 0.0 && principal_moments_[k] > kNullMomentRatio * largest &&
-        std::isfinite(1.0 / principal_moments_[k])) {
-      inverse_principal_moments_[k] = 1.0 / principal_moments_[k];
+    if (largest > 0.0 && d.principal_moments[k] > kNullMomentRatio * largest &&
+        std::isfinite(1.0 / d.principal_moments[k])) {
+      inverse_principal_moments_[k] = 1.0 / d.principal_moments[k];
       in_range[k] = 1.0;
       ++rank_;
     } else {
-      principal_moments_[k] = 0.0;
+      d.principal_moments[k] = 0.0;
     }
   }
   const Eigen::Matrix3d rotation = principal_axes_.toRotationMatrix();
-  inverse_inertia_ = rotation * inverse_principal_moments_.asDiagonal() * rotation.transpose();
-  range_projector_ = rotation * in_range.asDiagonal() * rotation.transpose();
+  d.inverse_inertia = rotation * inverse_principal_moments_.asDiagonal() * rotation.transpose();
+  d.range_projector = rotation * in_range.asDiagonal() * rotation.transpose();
   isotropic_ = rank_ == 3 &&
-               principal_moments_[2] - principal_moments_[0] <= 1e-12 * principal_moments_[2];
+               d.principal_moments[2] - d.principal_moments[0] <= 1e-12 * d.principal_moments[2];
+  details_ = std::move(details);
 }
 
 }  // namespace rigid_body_sim::core

@@ -13,6 +13,9 @@ constexpr double kTimeToleranceInSteps = 1e-3;
 // A couple smaller than this along a null axis is round-off, not a dropped load.
 constexpr double kDroppedCoupleTolerance_Nm = 1e-9;
 
+// Free bodies handed to Integrator::StepFree at a time.
+constexpr std::size_t kFreeBatch = 64;
+
 std::vector<std::size_t> ParticleCounts(const std::vector<BodyModel>& models) {
   std::vector<std::size_t> counts;
   counts.reserve(models.size());
@@ -66,7 +69,6 @@ std::optional<std::size_t> World::FindBody(const std::string& name) const {
 void World::Step() {
   wrenches_.Reduce(time(), options_.wrench_timeout_s, kTimeToleranceInSteps * options_.dt_s,
                    models_, &loads_, &loaded_);
-  free_bodies_.clear();
   for (std::size_t i = 0; i < models_.size(); ++i) {
     if (faults_[i] != BodyFault::kNone) continue;
     const BodyModel& model = models_[i];
@@ -84,17 +86,25 @@ void World::Step() {
     } else if (state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
       continue;  // at rest and unloaded: nothing can move it, so skip the scheme
     } else if (model.is_full_rank()) {
-      free_bodies_.push_back(i);  // stepped below, all together, so a scheme can batch them
+      // Stepped in batches, so that a scheme can run them side by side; small
+      // ones, so that their states are still in cache from the test above.
+      free_bodies_.push_back(i);
+      if (free_bodies_.size() == kFreeBatch) StepFreeBodies();
       continue;
     }
     const BodyState before = state;
     integrator_->Step(model, load, options_.dt_s, &state);
     FinishStep(i, before);
   }
+  StepFreeBodies();
+  ++steps_;
+}
+
+void World::StepFreeBodies() {
   free_faults_.clear();
   integrator_->StepFree(models_, free_bodies_, options_.dt_s, &states_, &free_faults_);
   for (const auto& [body, fault] : free_faults_) Freeze(body, fault);
-  ++steps_;
+  free_bodies_.clear();
 }
 
 void World::FinishStep(std::size_t body, const BodyState& before) {

@@ -2,6 +2,7 @@
 // point particles (seed: "pre-computation"). Immutable after construction.
 #pragma once
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -32,29 +33,29 @@ class BodyModel {
   // problem: no particles, a mass <= 0 or not finite, a position not finite.
   BodyModel(std::string name, std::vector<Particle> particles);
 
-  const std::string& name() const { return name_; }
+  const std::string& name() const { return details_->name; }
   double mass() const { return mass_kg_; }
   double inverse_mass() const { return 1.0 / mass_kg_; }
-  std::size_t particle_count() const { return masses_kg_.size(); }
-  const std::vector<double>& particle_masses() const { return masses_kg_; }
+  std::size_t particle_count() const { return details_->masses_kg.size(); }
+  const std::vector<double>& particle_masses() const { return details_->masses_kg; }
   // x̄_CM, reference coordinates [m].
-  const Eigen::Vector3d& reference_com() const { return reference_com_m_; }
+  const Eigen::Vector3d& reference_com() const { return details_->reference_com_m; }
   // r̄_i = x̄_i − x̄_CM, body axes [m].
-  const std::vector<Eigen::Vector3d>& particle_offsets() const { return offsets_m_; }
+  const std::vector<Eigen::Vector3d>& particle_offsets() const { return details_->offsets_m; }
 
   // Ī about the COM, body axes [kg m²], and its pseudo-inverse.
-  const Eigen::Matrix3d& inertia() const { return inertia_; }
-  const Eigen::Matrix3d& inverse_inertia() const { return inverse_inertia_; }
+  const Eigen::Matrix3d& inertia() const { return details_->inertia; }
+  const Eigen::Matrix3d& inverse_inertia() const { return details_->inverse_inertia; }
 
   // Principal moments λ_1 <= λ_2 <= λ_3 (null ones set to exactly 0), their
   // inverses (0 for a null moment), and the rotation from the principal frame
   // to body axes (a proper rotation: R_BP = principal_axes().toRotationMatrix()).
-  const Eigen::Vector3d& principal_moments() const { return principal_moments_; }
+  const Eigen::Vector3d& principal_moments() const { return details_->principal_moments; }
   const Eigen::Vector3d& inverse_principal_moments() const { return inverse_principal_moments_; }
   const Eigen::Quaterniond& principal_axes() const { return principal_axes_; }
   // Orthogonal projector onto the range of Ī, body axes (identity when Ī is
   // invertible, zero for a single particle).
-  const Eigen::Matrix3d& range_projector() const { return range_projector_; }
+  const Eigen::Matrix3d& range_projector() const { return details_->range_projector; }
 
   int rank() const { return rank_; }
   bool is_full_rank() const { return rank_ == 3; }
@@ -62,21 +63,25 @@ class BodyModel {
   bool is_isotropic() const { return isotropic_; }
 
  private:
-  // What a free body's step reads comes first, within 80 bytes: scenes of
-  // 10⁴–10⁵ bodies step from memory, and this halves the lines it touches.
+  // What a step reads sits inline, in 80 bytes: scenes of 10⁴ bodies step
+  // from memory, and their models are then read as one dense stream.
   double mass_kg_ = 0.0;
   int rank_ = 0;
   bool isotropic_ = false;
   Eigen::Vector3d inverse_principal_moments_;
   Eigen::Quaterniond principal_axes_;
-  std::string name_;
-  std::vector<double> masses_kg_;
-  Eigen::Vector3d reference_com_m_;
-  std::vector<Eigen::Vector3d> offsets_m_;
-  Eigen::Matrix3d inertia_;
-  Eigen::Matrix3d inverse_inertia_;
-  Eigen::Vector3d principal_moments_;
-  Eigen::Matrix3d range_projector_;
+  // The rest, immutable, so copies share it.
+  struct Details {
+    std::string name;
+    std::vector<double> masses_kg;
+    Eigen::Vector3d reference_com_m;
+    std::vector<Eigen::Vector3d> offsets_m;
+    Eigen::Matrix3d inertia;
+    Eigen::Matrix3d inverse_inertia;
+    Eigen::Vector3d principal_moments;
+    Eigen::Matrix3d range_projector;
+  };
+  std::shared_ptr<const Details> details_;
 };
 
 }  // namespace rigid_body_sim::core

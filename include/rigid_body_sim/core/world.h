@@ -76,6 +76,8 @@ class World {
   // is frozen).
   void FinishStep(std::size_t body, const BodyState& before);
   void Freeze(std::size_t body, BodyFault fault);
+  // Steps the bodies in free_bodies_ through StepFree and empties it.
+  void StepFreeBodies();
 
   std::vector<BodyModel> models_;
   std::vector<BodyState> initial_states_;

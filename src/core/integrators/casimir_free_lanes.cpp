@@ -2,7 +2,6 @@
 
 #include <cmath>
 
-#include "casimir_step.h"
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 
 // One clone of the kernel per x86-64 level, picked by the loader; elsewhere
@@ -15,9 +14,6 @@
 
 namespace rigid_body_sim::core {
 namespace {
-
-// The largest dt·|L|·max_k(1/λ_k) of a body in the lanes (FitsFreeLanes).
-constexpr double kMaxTurn = 1.0 / 16;
 
 // Yoshida's weights, as in casimir_splitting4.cpp.
 const double kOuterWeight = 1.0 / (2.0 - std::cbrt(2.0));
@@ -59,45 +55,12 @@ inline void Axis3Flow(double coefficient, double h, double* m, Quaternion* q) {
 
 }  // namespace
 
-bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double dt_s) {
-  const double turn_rate = dt_s * model.inverse_principal_moments().maxCoeff();
-  // Squared, to spare the square root; false for a NaN.
-  return turn_rate * turn_rate * state.angular_momentum.squaredNorm() <= kMaxTurn * kMaxTurn;
-}
-
 FreeLanes::FreeLanes() {
   for (std::size_t l = 0; l < kFreeLanes; ++l) {
     orientation[3][l] = 1.0;
     principal_axes[3][l] = 1.0;
     mass[l] = 1.0;
   }
-}
-
-void FreeLanes::Load(std::size_t lane, const BodyModel& model, const BodyState& state) {
-  for (int k = 0; k < 3; ++k) {
-    position[k][lane] = state.position[k];
-    linear_momentum[k][lane] = state.linear_momentum[k];
-    angular_momentum[k][lane] = state.angular_momentum[k];
-  }
-  for (int k = 0; k < 4; ++k) {
-    orientation[k][lane] = state.orientation.coeffs()[k];
-    principal_axes[k][lane] = model.principal_axes().coeffs()[k];
-  }
-  const CasimirSplit split(model);
-  mass[lane] = model.mass();
-  casimir[lane] = split.casimir;
-  axis1[lane] = split.axis1;
-  axis3[lane] = split.axis3;
-}
-
-bool FreeLanes::Store(std::size_t lane, BodyState* state) const {
-  double sum = 0.0;
-  for (int k = 0; k < 3; ++k) sum += position[k][lane];
-  for (int k = 0; k < 4; ++k) sum += orientation[k][lane];
-  if (!std::isfinite(sum)) return false;
-  for (int k = 0; k < 3; ++k) state->position[k] = position[k][lane];
-  for (int k = 0; k < 4; ++k) state->orientation.coeffs()[k] = orientation[k][lane];
-  return true;
 }
 
 // FreeStep of casimir_splitting4.cpp, lane by lane: drift, Π = q_WPᵀ L, the

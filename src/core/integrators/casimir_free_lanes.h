@@ -4,8 +4,10 @@
 // in SIMD registers (AVX-512, AVX2 or SSE2, picked when the program loads).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 
+#include "casimir_step.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 
@@ -18,7 +20,12 @@ constexpr std::size_t kFreeLanes = 8;
 // sub-step is 1.70 dt), where SinCosSmall's series is exact to round-off.
 // Then |ω|·dt is far below π, and p and L do not change in a free step, so of
 // CheckState's bounds only the finiteness of x and q could newly fail.
-bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double dt_s);
+inline bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double dt_s) {
+  constexpr double kMaxTurn = 1.0 / 16;
+  const double turn_rate = dt_s * model.inverse_principal_moments().maxCoeff();
+  // Squared, to spare the square root; false for a NaN.
+  return turn_rate * turn_rate * state.angular_momentum.squaredNorm() <= kMaxTurn * kMaxTurn;
+}
 
 struct FreeLanes {
   // State: x_CM, q body → world (x, y, z, w), p and L, world.
@@ -38,11 +45,34 @@ struct FreeLanes {
   FreeLanes();
 
   // Copies body `model` in `state` into `lane`.
-  void Load(std::size_t lane, const BodyModel& model, const BodyState& state);
+  void Load(std::size_t lane, const BodyModel& model, const BodyState& state) {
+    for (int k = 0; k < 3; ++k) {
+      position[k][lane] = state.position[k];
+      linear_momentum[k][lane] = state.linear_momentum[k];
+      angular_momentum[k][lane] = state.angular_momentum[k];
+    }
+    for (int k = 0; k < 4; ++k) {
+      orientation[k][lane] = state.orientation.coeffs()[k];
+      principal_axes[k][lane] = model.principal_axes().coeffs()[k];
+    }
+    const CasimirSplit split(model);
+    mass[lane] = model.mass();
+    casimir[lane] = split.casimir;
+    axis1[lane] = split.axis1;
+    axis3[lane] = split.axis3;
+  }
   // Writes the lane's position and orientation (the only parts a free step
   // changes) to `state` if they are finite; false (and `state` untouched) if
   // not.
-  bool Store(std::size_t lane, BodyState* state) const;
+  bool Store(std::size_t lane, BodyState* state) const {
+    double sum = 0.0;
+    for (int k = 0; k < 3; ++k) sum += position[k][lane];
+    for (int k = 0; k < 4; ++k) sum += orientation[k][lane];
+    if (!std::isfinite(sum)) return false;
+    for (int k = 0; k < 3; ++k) state->position[k] = position[k][lane];
+    for (int k = 0; k < 4; ++k) state->orientation.coeffs()[k] = orientation[k][lane];
+    return true;
+  }
 };
 
 // Advances every lane by h; the bodies in use must fit (FitsFreeLanes).
