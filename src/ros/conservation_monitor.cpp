@@ -21,6 +21,9 @@ void ConservationMonitor::RebaseAll(const core::World& world) {
   references_.resize(world.size());
   loaded_.assign(world.size(), false);
   for (std::size_t body = 0; body < world.size(); ++body) Rebase(world, body);
+  sweep_cursor_ = 0;
+  sweep_ = Largest{};
+  last_sweep_ = Largest{};
 }
 
 void ConservationMonitor::Rebase(const core::World& world, std::size_t body) {
@@ -36,6 +39,29 @@ std::optional<ConservationMonitor::Drift> ConservationMonitor::Measure(const cor
       RelativeChange(now.angular_momentum_norm, references_[body].angular_momentum_norm);
   drift.rotational_energy = RelativeChange(now.rotational_energy, references_[body].rotational_energy);
   return drift;
+}
+
+void ConservationMonitor::Sweep(const core::World& world, std::size_t count) {
+  for (std::size_t i = 0; i < count && world.size() > 0; ++i) {
+    const std::size_t body = sweep_cursor_;
+    if (const std::optional<Drift> drift = Measure(world, body)) {
+      // The first measured body sets both, so a NaN drift is still reported.
+      if (!sweep_.measured || std::abs(drift->angular_momentum_norm) > sweep_.angular_momentum_norm) {
+        sweep_.angular_momentum_norm = std::abs(drift->angular_momentum_norm);
+        sweep_.angular_momentum_body = body;
+      }
+      if (!sweep_.measured || std::abs(drift->rotational_energy) > sweep_.rotational_energy) {
+        sweep_.rotational_energy = std::abs(drift->rotational_energy);
+        sweep_.rotational_energy_body = body;
+      }
+      sweep_.measured = true;
+    }
+    if (++sweep_cursor_ == world.size()) {
+      last_sweep_ = sweep_;
+      sweep_ = Largest{};
+      sweep_cursor_ = 0;
+    }
+  }
 }
 
 ConservationMonitor::Invariants ConservationMonitor::Of(const core::World& world, std::size_t body) {

@@ -308,6 +308,10 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   settings.publish_tf = params.Bool("publish_tf", settings.publish_tf);
   settings.particle_marker_diameter_m =
       params.Number("particle_marker_diameter", settings.particle_marker_diameter_m);
+  settings.status_period_s = params.Number("status_period", settings.status_period_s);
+  if (settings.status_period_s < 0.0) {
+    throw SceneError("~status_period must be >= 0, got " + FormatNumber(settings.status_period_s));
+  }
   return settings;
 }
 

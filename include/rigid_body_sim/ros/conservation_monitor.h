@@ -33,6 +33,20 @@ class ConservationMonitor {
   // Nothing for a body that had a wrench since its reference.
   std::optional<Drift> Measure(const core::World& world, std::size_t body) const;
 
+  // The largest |drift| of each kind over the torque-free bodies, and whose.
+  struct Largest {
+    bool measured = false;  // false: no torque-free body in the sweep
+    double angular_momentum_norm = 0.0;
+    std::size_t angular_momentum_body = 0;
+    double rotational_energy = 0.0;
+    std::size_t rotational_energy_body = 0;
+  };
+  // Measures the next `count` bodies, round robin, so that a large scene's
+  // sweep is spread over many steps instead of stalling one; keeps the last
+  // completed sweep.
+  void Sweep(const core::World& world, std::size_t count);
+  const Largest& last_sweep() const { return last_sweep_; }
+
  private:
   struct Invariants {
     double angular_momentum_norm = 0.0;
@@ -42,6 +56,9 @@ class ConservationMonitor {
 
   std::vector<Invariants> references_;
   std::vector<bool> loaded_;
+  std::size_t sweep_cursor_ = 0;
+  Largest sweep_;
+  Largest last_sweep_;
 };
 
 }  // namespace rigid_body_sim

@@ -28,6 +28,7 @@ struct NodeSettings {
   bool publish_clock = false;
   bool publish_tf = true;
   double particle_marker_diameter_m = 0.04;  // ~particles sphere size (extension)
+  double status_period_s = 1.0;  // the INFO status line's period, 0: never (extension)
 };
 
 struct Scene {

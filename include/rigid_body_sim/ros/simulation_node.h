@@ -24,7 +24,7 @@
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 #include <std_srvs/SetBool.h>
-#include <tf2_ros/transform_broadcaster.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/conservation_monitor.h"
@@ -83,6 +83,7 @@ class SimulationNode {
   const std::uint64_t publish_every_steps_;      // decimation: rate / publish_rate, rounded
   StepPacer pacer_;
   ConservationMonitor conservation_;
+  const std::size_t sweep_per_step_;  // bodies the conservation sweep measures per step
   bool paused_ = false;
   ros::Time start_stamp_;  // t0: ROS time when stepping started; the world counts from 0
 
@@ -93,8 +94,13 @@ class SimulationNode {
   std::vector<int> twist_subscribers_;
   ros::Publisher bodies_publisher_;
   ros::Publisher particles_publisher_;
+  int bodies_subscribers_ = 0;
+  int particles_subscribers_ = 0;
   ros::Publisher clock_publisher_;
-  tf2_ros::TransformBroadcaster tf_broadcaster_;
+  // /tf advertised as tf2_ros::TransformBroadcaster does, but with a
+  // subscriber count: 10⁴ transforms are not built for nobody.
+  ros::Publisher tf_publisher_;
+  int tf_subscribers_ = 0;
   std::vector<ros::Subscriber> subscribers_;
   std::vector<ros::ServiceServer> services_;
   diagnostic_updater::Updater diagnostics_;
@@ -106,8 +112,8 @@ class SimulationNode {
   double step_time_mean_us_ = 0.0;
   double step_time_max_us_ = 0.0;
   double achieved_real_time_factor_ = 0.0;
-  std::uint64_t overruns_reported_ = 0;
-  std::uint64_t overruns_in_window_ = 0;
+  std::uint64_t overruns_at_last_status_ = 0;  // for the status line's count
+  Clock::time_point next_status_{};
   std::vector<Eigen::Vector3d> particle_positions_;  // scratch for ~particles
   std::vector<core::BodyFault> reported_faults_;     // last fault logged per body
 };
