@@ -6,7 +6,8 @@ to one core with taskset) on scenes of N generated bodies (shape: box,
 resolution 2: 8 particles each) and measures
 
   1. capacity: the largest N stepped at rate 1000 with zero overruns
-     (publish_rate 10, nobody subscribed to /tf or ~bodies), from the node's
+     (publish_rate 10, status_period 0, nobody subscribed to /tf or ~bodies; the
+     node's stepping thread one SCHED_FIFO level above roscpp's), from the node's
      own /diagnostics status "simulation" (keys overruns, steps, sim_time_s,
      step_time_mean_us, step_time_max_us, real_time_factor_achieved);
   2. CPU use of the node (/proc/<pid>/stat utime+stime over a window) at 100
@@ -19,7 +20,7 @@ resolution 2: 8 particles each) and measures
 Writes a Markdown report (also printed) to bench/results/node_load.md and one
 CSV row per run to bench/results/node_load.csv.
 
-  bench/node_load.py [--quick] [--workspace PATH] [--port 11395] [--out DIR]
+  bench/node_load.py [--quick] [--sizes N ...] [--workspace PATH] [--port 11395] [--out DIR]
 
 The script re-executes itself with PATH/devel/setup.bash sourced (default
 workspace: .build_ws in the checkout). It and the master stay on core 0, the
@@ -50,6 +51,8 @@ NS = "/" + NODE_NAME
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="smaller scan, under a minute")
+    parser.add_argument("--sizes", type=int, nargs="+", default=None,
+                        help="body counts the capacity part scans (default 1 1000 10000)")
     parser.add_argument("--workspace", default=os.path.join(REPO, ".build_ws"),
                         help="catkin workspace whose devel/setup.bash is sourced (default: .build_ws in the repo)")
     parser.add_argument("--port", type=int, default=11395, help="port of the private ROS master")
@@ -262,7 +265,9 @@ class Diagnostics:
 # ------------------------------------------------------------------- scenes
 
 def make_scene(n_bodies, rate, publish_rate, moving=True):
-    """N boxes of 2x2x2 particles (8 each) on a grid, all turning and drifting."""
+    """N boxes of 2x2x2 particles (8 each) on a grid, all turning and drifting.
+    No status line (status_period 0): each log message costs roscpp O(topics),
+    ~3.5 ms at 10^4 bodies; the script reads /diagnostics instead."""
     bodies = []
     side = max(1, int(math.ceil(n_bodies ** (1.0 / 3.0))))
     rng = random.Random(n_bodies)
@@ -275,7 +280,7 @@ def make_scene(n_bodies, rate, publish_rate, moving=True):
             body["angular_velocity"] = [rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(1, 3)]
         bodies.append(body)
     return {"rate": float(rate), "publish_rate": float(publish_rate), "real_time_factor": 1.0,
-            "gravity": [0.0, 0.0, 0.0], "bodies": bodies}
+            "gravity": [0.0, 0.0, 0.0], "status_period": 0.0, "bodies": bodies}
 
 
 class NodeRun:
@@ -366,7 +371,8 @@ class NodeRun:
 ROWS = []
 CSV_FIELDS = ["part", "label", "n_bodies", "rate_hz", "publish_rate_hz", "subscribers", "entries_per_msg",
               "msgs_hz", "attempt", "window_s", "integrator", "startup_s", "overruns", "overruns_per_s",
-              "catch_up_limit_hits", "rtf_window", "rtf_min", "step_mean_us", "step_max_us", "cpu_percent",
+              "floor_overruns", "floor_worst_us", "catch_up_limit_hits", "rtf_window", "rtf_min", "step_mean_us",
+              "step_max_us", "cpu_percent",
               "core_other_percent", "loadavg1", "tf_msgs_per_s", "bodies_msgs_per_s", "rx_mbyte_per_s",
               "pub_msgs_per_s", "pub_busy_percent", "wrenches_sent_per_s", "wrenches_taken_per_s",
               "latency_median_ms", "latency_p90_ms", "latency_min_ms", "latency_max_ms",
@@ -399,17 +405,30 @@ def md_table(header, rows):
 NOISE_OVERRUNS_PER_S = 1.0  # above what this (virtual, shared) machine gives a one-body node
 
 
+def machine_floor(window_s, busy_us):
+    """Overruns of a bare 1 kHz loop (bench/wake_jitter) on the node's core, with the node's
+    scheduling and step time: what this machine alone gives."""
+    probe = os.path.join(os.environ[ENV_MARK], "devel", "lib", "rigid_body_sim", "wake_jitter")
+    out = subprocess.run(NODE_PREFIX + ["taskset", "-c", str(ARGS.node_cpu), probe, "%.1f" % window_s,
+                                        str(int(round(busy_us)))],
+                         stdout=subprocess.PIPE, universal_newlines=True, check=True).stdout
+    fields = dict(item.split("=") for item in out.split())
+    return int(fields["late_wakeups"]), float(fields["worst_late_us"])
+
+
 def capacity_run(diag, n, warmup, window, attempt):
     with NodeRun(diag, make_scene(n, 1000, 10), "capacity_%d_%d" % (n, attempt)) as run:
         r = run.measure(warmup, window)
+    r["floor_overruns"], r["floor_worst_us"] = machine_floor(r["window_s"], r["step_mean_us"])
     passed = r["overruns"] == 0 and r["rtf_min"] >= 0.99
-    load_ok = (r["overruns_per_s"] <= NOISE_OVERRUNS_PER_S and r["catch_up_limit_hits"] == 0
-               and r["rtf_min"] >= 0.99)
-    log("capacity N=%d: %d overruns in %.1f s, step %.1f us (max %.0f), RTF min %.3f, CPU %.0f%%, "
-        "core %d other %.0f%%, load %.2f, first report %.1f s -> %s"
-        % (n, r["overruns"], r["window_s"], r["step_mean_us"], r["step_max_us"], r["rtf_min"],
-           r["cpu_percent"], ARGS.node_cpu, r["core_other_percent"], r["loadavg1"], r["startup_s"],
-           "pass" if passed else ("pass within noise" if load_ok else "FAIL")))
+    # Within noise: no more than 1/s, or than twice what the bare loop got in the same time.
+    load_ok = (r["overruns"] <= max(NOISE_OVERRUNS_PER_S * r["window_s"], 2 * r["floor_overruns"])
+               and r["catch_up_limit_hits"] == 0 and r["rtf_min"] >= 0.99)
+    log("capacity N=%d: %d overruns in %.1f s (bare loop, same step time: %d), step %.1f us (max %.0f), "
+        "RTF min %.3f, CPU %.0f%%, core %d other %.0f%%, load %.2f, first report %.1f s -> %s"
+        % (n, r["overruns"], r["window_s"], r["floor_overruns"], r["step_mean_us"], r["step_max_us"],
+           r["rtf_min"], r["cpu_percent"], ARGS.node_cpu, r["core_other_percent"], r["loadavg1"],
+           r["startup_s"], "pass" if passed else ("pass within noise" if load_ok else "FAIL")))
     return record(part=1, label="capacity", n_bodies=n, rate_hz=1000, publish_rate_hz=10, subscribers="none",
                   attempt=attempt, passed=passed, load_ok=load_ok, **r)
 
@@ -417,7 +436,7 @@ def capacity_run(diag, n, warmup, window, attempt):
 def part_capacity(diag, quick, budget_end):
     """Scans N until a run fails beyond noise, then bisects. Returns
     (largest strict pass, largest pass within noise, smallest failure beyond noise)."""
-    scan = [1, 100, 1000] if quick else [1, 100, 200, 500, 1000, 2000, 5000, 10000]
+    scan = ARGS.sizes or ([1, 100, 1000] if quick else [1, 1000, 10000])
     warmup, window = (1.0, 3.0) if quick else (3.0, 10.0)
     strict = {}
 
@@ -767,8 +786,8 @@ def write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed):
     summary = []
     summary.append(("bodies at rate 1000 Hz, zero overruns in the window (publish_rate 10, one core)",
                     "%s" % (strict_best if strict_best is not None else "none of the sizes tried")))
-    summary.append(("bodies at rate 1000 Hz, overruns <= %.0f/s (this machine's noise), RTF >= 0.99"
-                    % NOISE_OVERRUNS_PER_S,
+    summary.append(("bodies at rate 1000 Hz, overruns within this machine's noise (<= %.0f/s or <= 2x a bare "
+                    "loop's), RTF >= 0.99" % NOISE_OVERRUNS_PER_S,
                     "%s (fails at %s)" % (best if best is not None else "none",
                                          first_fail if first_fail else "> largest tried")))
     for r in cpu_rows:
@@ -793,19 +812,24 @@ def write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed):
     md.append("Each run: node started on a fresh scene, %s s warm-up, then the window between two "
               "diagnostics reports. Overruns = increase of the cumulative `overruns` key (a wake-up late by "
               "more than one step). RTF min = lowest `real_time_factor_achieved` in the window. "
-              "Pass = zero overruns and RTF min >= 0.99; \"within noise\" = at most %.0f overrun/s, no catch-up-limit "
-              "hit and RTF min >= 0.99 (this shared virtual machine gives a one-body node occasional late "
-              "wake-ups even under SCHED_FIFO). The scan stops at the first size that fails beyond noise and "
+              "Pass = zero overruns and RTF min >= 0.99; \"within noise\" = at most %.0f overrun/s or at most "
+              "twice the bare loop's count, no catch-up-limit hit and RTF min >= 0.99. \"bare loop\" = "
+              "`bench/wake_jitter` right after the run, on the node's core with its scheduling: sleep to each "
+              "1 ms boundary, then busy for the run's mean step time, overruns counted as the node counts "
+              "them; it is what this shared virtual machine gives with no node at all. The scan stops at the "
+              "first size that fails beyond noise and "
               "bisects; a size that fails only within noise is repeated once; all attempts are listed. "
               "\"core other\" = busy time of the node's core not used by the node (disturbance)."
               % ("1" if quick else "3", NOISE_OVERRUNS_PER_S))
     md.append("")
     rows = [r for r in ROWS if r["part"] == 1]
     md.append(md_table(
-        ["N bodies", "try", "window s", "overruns", "overruns per publish cycle", "catch-up hits",
+        ["N bodies", "try", "window s", "overruns", "bare loop overruns", "overruns per publish cycle",
+         "catch-up hits",
          "step mean us", "ns per body-step", "step max us", "RTF min", "node CPU %", "core other %", "load avg",
          "first report s", "pass"],
-        [[r["n_bodies"], r["attempt"], r["window_s"], r["overruns"], "%.2f" % (r["overruns"] / (10.0 * r["window_s"])),
+        [[r["n_bodies"], r["attempt"], r["window_s"], r["overruns"], r["floor_overruns"],
+          "%.2f" % (r["overruns"] / (10.0 * r["window_s"])),
           r["catch_up_limit_hits"], r["step_mean_us"], 1e3 * r["step_mean_us"] / r["n_bodies"],
           r["step_max_us"], "%.3f" % r["rtf_min"], r["cpu_percent"], r["core_other_percent"],
           "%.2f" % r["loadavg1"], r["startup_s"],

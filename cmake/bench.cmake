@@ -18,3 +18,6 @@ add_executable(wrench_flood bench/wrench_flood.cpp)
 target_include_directories(wrench_flood PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(wrench_flood ${catkin_LIBRARIES})
 add_dependencies(wrench_flood ${${PROJECT_NAME}_EXPORTED_TARGETS})
+
+# The machine's wake-up jitter, the floor under the node's overruns (bench/node_load.py).
+add_executable(wake_jitter bench/wake_jitter.cpp)

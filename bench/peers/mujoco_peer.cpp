@@ -5,7 +5,10 @@
 //   with all copies; mujoco_implicit: one model per copy, because 2.2.2's
 //   implicit integrator works on dense nv × nv matrices: with 1,000 bodies
 //   (nv = 6,000) the model does not even fit MuJoCo's default stack, and
-//   its cost would grow as nv³ instead of with the number of bodies). Each
+//   its cost would grow as nv³ instead of with the number of bodies). Models
+//   of equal size are compiled once and share it, each copy with its own
+//   mjData; a one-body model gets <size njmax="10" nconmax="1"/> (10 kB of
+//   constraint buffers instead of 3 MB; it has no constraint). Each
 //   body is a <freejoint/> and an <inertial> with
 //   pos = 0 (the body frame is our body frame, origin at the COM), mass M,
 //   quat = the principal axes R_BP and diaginertia = the principal moments.
@@ -67,7 +70,10 @@ class MujocoPeer final : public Peer {
     run_.Start(scene, dt_s);
     const int per_model = bodies_per_model_ > 0 ? bodies_per_model_ : copies;
     for (int first = 0; first < copies; first += per_model) {
-      Compile(std::min(per_model, copies - first));
+      // Chunks of the same size share one compiled model, each with its own data.
+      const int bodies = std::min(per_model, copies - first);
+      if (compiled_.empty() || compiled_.back().bodies != bodies) compiled_.push_back({bodies, Compile(bodies)});
+      models_.push_back({compiled_.back().model, mj_makeData(compiled_.back().model)});
     }
     // Where each copy lives: its model, body and qpos/qvel addresses, read
     // from the model so that nothing depends on MuJoCo's layout.
@@ -127,8 +133,12 @@ class MujocoPeer final : public Peer {
 
  private:
   struct Compiled {
-    mjModel* model;
+    const mjModel* model;
     mjData* data;
+  };
+  struct Model {
+    int bodies;
+    mjModel* model;
   };
   struct Copy {
     std::size_t model;
@@ -155,7 +165,12 @@ class MujocoPeer final : public Peer {
     xml << "<mujoco model=\"rbs_bench\">\n"
         << "<option timestep=\"" << Exact(run_.dt_s) << "\" gravity=\"0 0 0\" integrator=\""
         << kIntegratorNames[integrator_] << "\">\n"
-        << "<flag contact=\"disable\"/>\n</option>\n<worldbody>\n";
+        << "<flag contact=\"disable\"/>\n</option>\n";
+    // No constraint can arise (no contact, joint limit or equality), but the
+    // default buffers hold 500 constraint rows (3 MB per mjData): 1,000 such
+    // data cost seconds of page faults per setup.
+    if (bodies == 1) xml << "<size njmax=\"10\" nconmax=\"1\"/>\n";
+    xml << "<worldbody>\n";
     for (int b = 0; b < bodies; ++b) {
       xml << "<body name=\"copy" << b << "\"><freejoint/>" << inertial.str() << "</body>\n";
     }
@@ -164,7 +179,7 @@ class MujocoPeer final : public Peer {
   }
 
   // Compiles the MJCF from memory through MuJoCo's virtual file system.
-  void Compile(int bodies) {
+  mjModel* Compile(int bodies) {
     const std::string xml = Mjcf(bodies);
     auto vfs = std::make_unique<mjVFS>();  // ~2 MB: not on the stack
     mj_defaultVFS(vfs.get());
@@ -180,15 +195,14 @@ class MujocoPeer final : public Peer {
     if (model == nullptr) {
       throw std::runtime_error(name_ + ": MuJoCo rejected the model: " + error);
     }
-    models_.push_back({model, mj_makeData(model)});
+    return model;
   }
 
   void Release() {
-    for (const Compiled& m : models_) {
-      mj_deleteData(m.data);
-      mj_deleteModel(m.model);
-    }
+    for (const Compiled& m : models_) mj_deleteData(m.data);
+    for (const Model& m : compiled_) mj_deleteModel(m.model);
     models_.clear();
+    compiled_.clear();
     copies_.clear();
   }
 
@@ -196,7 +210,8 @@ class MujocoPeer final : public Peer {
   mjtIntegrator integrator_;
   int bodies_per_model_;
   PeerRun run_;
-  std::vector<Compiled> models_;
+  std::vector<Model> compiled_;    // owned
+  std::vector<Compiled> models_;  // the data are owned
   std::vector<Copy> copies_;
 };
 
