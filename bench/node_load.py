@@ -788,8 +788,8 @@ def write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed):
                     "%s" % (strict_best if strict_best is not None else "none of the sizes tried")))
     summary.append(("bodies at rate 1000 Hz, overruns within this machine's noise (<= %.0f/s or <= 2x a bare "
                     "loop's), RTF >= 0.99" % NOISE_OVERRUNS_PER_S,
-                    "%s (fails at %s)" % (best if best is not None else "none",
-                                         first_fail if first_fail else "> largest tried")))
+                    "%s (%s)" % (best if best is not None else "none",
+                                 "fails at %s" % first_fail if first_fail else "no size tried failed")))
     for r in cpu_rows:
         summary.append(("node CPU, %d bodies, /tf + ~bodies at 100 Hz subscribed" % r["n_bodies"],
                         "%.1f %% of one core" % r["cpu_percent"]))
