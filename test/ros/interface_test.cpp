@@ -11,7 +11,9 @@
 // bodies alpha (3 particles, at rest at (1, 2, 3)) and beta (a 2-particle rod,
 // at rest at (−1, 0, 0.5), turned +90° about x̂).
 #include <cmath>
+#include <map>
 #include <set>
+#include <string>
 
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TwistStamped.h>
@@ -27,6 +29,7 @@
 
 namespace {
 
+using rbs_test::DiagnosticsRecorder;
 using rbs_test::FindBody;
 using rbs_test::TheSim;
 using rbs_test::WaitFor;
@@ -227,6 +230,29 @@ TEST(Interface, ClockPublishedFromSimulationTime) {
     ASSERT_NEAR(d, std::round(d / 1e-3) * 1e-3, 1e-9) << "/clock off the simulation grid";
   }
   EXPECT_NEAR((clock.back() - stamps.back()).toSec(), 0.0, 0.5);
+}
+
+TEST(Interface, DiagnosticsGiveEachBodysDriftAndTheLargest) {
+  ros::NodeHandle nh;
+  DiagnosticsRecorder diagnostics;
+  diagnostics.Start(nh);
+  // Both bodies are torque-free: a small scene lists each one's drift, and
+  // every scene the largest with its body (from the sweep over all bodies).
+  ASSERT_TRUE(WaitFor([&] { return diagnostics.Get("angular_momentum_drift_max").has_value(); },
+                      rbs_test::kStartupTimeout))
+      << diagnostics.Dump();
+  std::map<std::string, std::string> values = diagnostics.Values();
+  for (const std::string body : {"alpha", "beta"}) {
+    EXPECT_EQ(values.count(body + "/angular_momentum_drift"), 1u) << diagnostics.Dump();
+    EXPECT_EQ(values.count(body + "/rotational_energy_drift"), 1u) << diagnostics.Dump();
+  }
+  for (const std::string key : {"angular_momentum_drift_max", "rotational_energy_drift_max"}) {
+    const std::optional<double> largest = diagnostics.Get(key);
+    ASSERT_TRUE(largest.has_value()) << key;
+    EXPECT_TRUE(std::isfinite(*largest) && *largest >= 0.0) << key << " = " << *largest;
+    const std::string body = values[key + "_body"];
+    EXPECT_TRUE(body == "alpha" || body == "beta") << key << "_body = '" << body << "'";
+  }
 }
 
 TEST(Interface, ParticlesMarkersShowEveryParticle) {

@@ -219,6 +219,10 @@ class InvalidScene(unittest.TestCase):
                             {'integrator': 'no_such_scheme', 'bodies': [good_body()]},
                             'integrator')
 
+    def test_status_period_negative(self):
+        self.check_rejected('status_period_negative',
+                            {'status_period': -1.0, 'bodies': [good_body()]}, 'status_period')
+
 
 if __name__ == '__main__':
     rostest.rosrun(PKG, 'invalid_scene', InvalidScene)

@@ -30,8 +30,8 @@ inline Quaternion Multiply(const Quaternion& a, const Quaternion& b) {
           a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
 
-// exp of the rotation vector θ for |θ| <= 1/8, by the series of cos(|θ|/2) and
-// sin(|θ|/2)/|θ| in |θ|²: no square root, no division (truncation < 1e-20).
+// exp of the rotation vector θ for |θ| <= 1/16, by the series of cos(|θ|/2) and
+// sin(|θ|/2)/|θ| in |θ|²: no square root, no division (truncation < 1e-21).
 inline Quaternion ExpMapSmall(double theta_x, double theta_y, double theta_z) {
   const double u2 = 0.25 * (theta_x * theta_x + theta_y * theta_y + theta_z * theta_z);
   const double half_cos = 1.0 + u2 * (-1.0 / 2 + u2 * (1.0 / 24 + u2 * (-1.0 / 720 + u2 * (1.0 / 40320))));
