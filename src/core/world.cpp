@@ -101,6 +101,7 @@ void World::Step() {
 }
 
 void World::StepFreeBodies() {
+  if (free_bodies_.empty()) return;
   free_faults_.clear();
   integrator_->StepFree(models_, free_bodies_, options_.dt_s, &states_, &free_faults_);
   for (const auto& [body, fault] : free_faults_) Freeze(body, fault);
