@@ -1,5 +1,6 @@
 #include "rigid_body_sim/core/body_model.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -69,13 +70,24 @@ BodyModel::BodyModel(std::string name, std::vector<Particle> particles) {
   principal_axes_ = Eigen::Quaterniond(axes).normalized();
   d.principal_moments = solver.eigenvalues();
 
-  const double largest = d.principal_moments.maxCoeff();
+  // A moment is null when it is round-off: below kNullMomentRatio of the
+  // largest (the eigensolver's precision), or below kRoundOffMomentRatio of
+  // Σ m_i |x̄_i|², the size of what the offsets r̄_i = x̄_i − x̄_CM are
+  // computed from. The second test is what makes a lone particle away from
+  // the origin (r̄ ~ 1e-17 m, λ ~ 1e-34 kg m²) a point, not a fast spinner.
+  double reference_moment = 0.0;
+  for (const Particle& particle : particles) {
+    reference_moment += particle.mass_kg * particle.position_m.squaredNorm();
+  }
+  const double round_off_moment =
+      std::isfinite(reference_moment) ? kRoundOffMomentRatio * reference_moment : 0.0;
+  const double null_below =
+      std::max(kNullMomentRatio * d.principal_moments.maxCoeff(), round_off_moment);
   Eigen::Vector3d in_range = Eigen::Vector3d::Zero();
   inverse_principal_moments_.setZero();
   for (int k = 0; k < 3; ++k) {
     // A moment whose inverse overflows (a body 1e-155 m across) counts as null too.
-    if (largest > 0.0 && d.principal_moments[k] > kNullMomentRatio * largest &&
-        std::isfinite(1.0 / d.principal_moments[k])) {
+    if (d.principal_moments[k] > null_below && std::isfinite(1.0 / d.principal_moments[k])) {
       inverse_principal_moments_[k] = 1.0 / d.principal_moments[k];
       in_range[k] = 1.0;
       ++rank_;

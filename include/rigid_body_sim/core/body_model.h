@@ -23,11 +23,14 @@ struct Particle {
 //
 // Degenerate bodies are legal: a single particle (Ī = 0) or collinear
 // particles (one zero principal moment). A principal moment below
-// kNullMomentRatio · λ_max is treated as zero, and its inverse as zero, which
-// is exact because particle forces make no torque about that axis.
+// kNullMomentRatio · λ_max, or below kRoundOffMomentRatio · Σ m_i |x̄_i|²
+// (offsets that are round-off of x̄_CM), is treated as zero, and its inverse
+// as zero, which is exact because particle forces make no torque about that
+// axis.
 class BodyModel {
  public:
   static constexpr double kNullMomentRatio = 1e-12;
+  static constexpr double kRoundOffMomentRatio = 1e-24;
 
   // Throws std::invalid_argument naming the body, the particle index and the
   // problem: no particles, a mass <= 0 or not finite, a position not finite.
