@@ -40,7 +40,7 @@ World MakeWorld(const std::string& integrator, int bodies, bool forced,
       push.particle = i % 8;
       push.force = {0.1, -0.2, 0.05};
       push.axes = i % 2 ? WrenchAxes::kBody : WrenchAxes::kWorld;
-      world.wrenches().Hold(push);
+      world.HoldWrench(push);
     }
   }
   return world;

@@ -77,7 +77,7 @@ World MakeSceneWorld(const Scene& scene, const std::string& integrator, double d
       ParticleWrench couple;
       couple.body = i;
       couple.couple = scene.constant_couple;
-      world.wrenches().Hold(couple);
+      world.HoldWrench(couple);
     }
   }
   return world;

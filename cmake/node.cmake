@@ -5,8 +5,10 @@ include_directories(include ${catkin_INCLUDE_DIRS})
 add_library(rigid_body_sim_ros
   src/ros/scene_params.cpp
   src/ros/conversions.cpp
-  src/ros/step_pacer.cpp
-  src/ros/conservation_monitor.cpp
+  src/ros/wrench_intake.cpp
+  src/ros/body_state_request.cpp
+  src/ros/state_publisher.cpp
+  src/ros/node_diagnostics.cpp
   src/ros/simulation_node.cpp)
 target_include_directories(rigid_body_sim_ros PUBLIC include ${catkin_INCLUDE_DIRS})
 target_link_libraries(rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES})

@@ -21,6 +21,8 @@
 #include <cstring>
 #include <exception>
 #include <limits>
+#include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -28,6 +30,7 @@
 
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/scene_params.h"
 
 #include "byte_reader.h"
@@ -181,6 +184,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (models.size() != static_cast<std::size_t>(bodies.size()) || states.size() != models.size()) {
     Fail("one model and one state per entry", 0);
   }
+  // The node's scene path ends in the World, which checks names and states.
+  std::optional<rigid_body_sim::core::World> world;
+  try {
+    world.emplace(models, states, rigid_body_sim::core::WorldOptions{});
+  } catch (const std::invalid_argument& error) {
+    if (Verbose()) std::fprintf(stderr, "World: %s\n", error.what());
+    return 0;
+  }
+  states = world->states();
   for (std::size_t i = 0; i < models.size(); ++i) {
     const auto& m = models[i];
     if (!(std::isfinite(m.mass()) && m.mass() > 0.0)) Fail("finite positive total mass", i);

@@ -1,5 +1,5 @@
 // libFuzzer target: arbitrary ParticleWrench messages through the node's path
-// (FromParticleWrench → World::wrenches().Hold) into a small world, interleaved
+// (CheckParticleWrench → World::HoldWrench) into a small world, interleaved
 // with World::Step, Reset and SetBodyState (validated as the node's
 // ~set_body_state does: finite pose and twist, non-zero quaternion).
 //
@@ -12,7 +12,7 @@
 //     ToTransformMsg) is finite;
 //   - an accepted conversion names a body and particle in range and carries
 //     finite vectors and a finite start time.
-// An exception escaping FromParticleWrench or the world is reported by
+// An exception escaping CheckParticleWrench or the world is reported by
 // libFuzzer as a crash (the node calls them from ROS callbacks).
 //
 // Build and run: scripts/fuzz.sh.
@@ -35,7 +35,9 @@
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_state_request.h"
 #include "rigid_body_sim/ros/conversions.h"
+#include "rigid_body_sim/ros/wrench_intake.h"
 
 #include "byte_reader.h"
 
@@ -274,8 +276,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                      msg.wrench.force.y, msg.wrench.force.z, msg.wrench.torque.x,
                      msg.wrench.torque.y, msg.wrench.torque.z);
       }
-      const rigid_body_sim::ConvertedWrench converted =
-          rigid_body_sim::FromParticleWrench(msg, frames, setup.start_stamp, world.time());
+      const rigid_body_sim::CheckedWrench converted =
+          rigid_body_sim::CheckParticleWrench(msg, frames, setup.start_stamp, world.time());
       if (Verbose()) {
         std::fprintf(stderr, "  -> %s %s start %.9g\n", rigid_body_sim::ToString(converted.rejection),
                      converted.detail.c_str(), converted.wrench.start_s);
@@ -288,10 +290,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                        w.body, w.particle);
           std::abort();
         }
-        if (world.wrenches().Hold(w) != core::WrenchRejection::kAccepted) {
-          std::fprintf(stderr, "wrench_fuzzer: the table rejected a converted wrench\n");
-          std::abort();
-        }
+        world.HoldWrench(w);
       } else if (converted.detail.empty()) {
         std::fprintf(stderr, "wrench_fuzzer: a rejection without detail\n");
         std::abort();
@@ -310,7 +309,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         world.Reset();
         CheckWorld(world, "Reset");
       } else {
-        world.wrenches().Clear();
+        world.ClearWrenches();
       }
     } else {  // ~set_body_state, through the node's own check
       const std::size_t body = in.Byte() % world.size();

@@ -7,8 +7,7 @@ Eigen::Vector3d LinearVelocity(const BodyModel& model, const BodyState& state) {
 }
 
 Eigen::Vector3d AngularVelocity(const BodyModel& model, const BodyState& state) {
-  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
-  return rotation * (model.inverse_inertia() * (rotation.transpose() * state.angular_momentum));
+  return AngularVelocity(model, state.orientation.toRotationMatrix(), state.angular_momentum);
 }
 
 Eigen::Matrix3d WorldInertia(const BodyModel& model, const BodyState& state) {

@@ -1,7 +1,7 @@
 #include "rigid_body_sim/core/world.h"
 
 #include <stdexcept>
-#include <unordered_set>
+#include <unordered_map>
 
 namespace rigid_body_sim::core {
 namespace {
@@ -13,7 +13,8 @@ constexpr double kTimeToleranceInSteps = 1e-3;
 // A couple smaller than this along a null axis is round-off, not a dropped load.
 constexpr double kDroppedCoupleTolerance_Nm = 1e-9;
 
-// Free bodies handed to Integrator::StepFree at a time.
+// Free bodies handed to Integrator::StepFree at a time: small enough that
+// their states are still in cache when they are checked.
 constexpr std::size_t kFreeBatch = 64;
 
 std::vector<std::size_t> ParticleCounts(const std::vector<BodyModel>& models) {
@@ -21,6 +22,10 @@ std::vector<std::size_t> ParticleCounts(const std::vector<BodyModel>& models) {
   counts.reserve(models.size());
   for (const BodyModel& model : models) counts.push_back(model.particle_count());
   return counts;
+}
+
+std::string Entry(std::size_t index, const std::string& name) {
+  return "bodies[" + std::to_string(index) + "] (name '" + name + "')";
 }
 
 }  // namespace
@@ -34,29 +39,30 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
       integrator_(MakeIntegrator(options.integrator)),
       wrenches_(ParticleCounts(models_)),
       loads_(models_.size()),
-      gravity_loads_(models_.size()),
       loaded_(models_.size(), 0),
       faults_(models_.size(), BodyFault::kNone) {
   if (!(options_.dt_s > 0.0)) throw std::invalid_argument("dt must be > 0");
   if (states_.size() != models_.size()) {
     throw std::invalid_argument("one initial state per body is required");
   }
-  std::unordered_set<std::string> names;
+  std::unordered_map<std::string, std::size_t> first_entry;  // name → index of its body
   for (std::size_t i = 0; i < models_.size(); ++i) {
     const std::string& name = models_[i].name();
-    if (name.empty()) throw std::invalid_argument("bodies[" + std::to_string(i) + "]: empty name");
-    if (!names.insert(name).second) {
-      throw std::invalid_argument("bodies[" + std::to_string(i) + "]: duplicate name '" + name + "'");
+    if (name.empty()) throw std::invalid_argument(Entry(i, name) + ": name must not be empty");
+    const auto [previous, inserted] = first_entry.emplace(name, i);
+    if (!inserted) {
+      throw std::invalid_argument(Entry(i, name) + ": name duplicates bodies[" +
+                                  std::to_string(previous->second) + "]");
     }
     const BodyFault fault = CheckState(models_[i], states_[i], options_.dt_s);
     if (fault != BodyFault::kNone) {
-      throw std::invalid_argument("bodies[" + std::to_string(i) + "] (name '" + name +
-                                  "'): initial state is " + ToString(fault));
+      throw std::invalid_argument(Entry(i, name) + ": initial state is " + ToString(fault));
     }
     if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
-    gravity_loads_[i].AddCentralForce(models_[i].mass() * options_.gravity);
   }
   has_gravity_ = !options_.gravity.isZero(0.0);
+  free_batch_.reserve(kFreeBatch);
+  free_batch_before_.reserve(kFreeBatch);
 }
 
 std::optional<std::size_t> World::FindBody(const std::string& name) const {
@@ -73,39 +79,39 @@ void World::Step() {
     if (faults_[i] != BodyFault::kNone) continue;
     const BodyModel& model = models_[i];
     BodyState& state = states_[i];
-    const Load* load = nullptr;
-    if (loaded_[i]) {
+    if (has_gravity_) {
       loads_[i].AddCentralForce(model.mass() * options_.gravity);
-      if (!model.is_full_rank() &&
-          loads_[i].DroppedTorque(state.orientation.toRotationMatrix()) > kDroppedCoupleTolerance_Nm) {
-        ++dropped_couples_;
+      loaded_[i] = 1;
+    }
+    if (!loaded_[i]) {
+      if (state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
+        continue;  // at rest and unloaded: nothing can move it, so skip the scheme
       }
-      load = &loads_[i];
-    } else if (has_gravity_) {
-      load = &gravity_loads_[i];
-    } else if (state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
-      continue;  // at rest and unloaded: nothing can move it, so skip the scheme
-    } else if (model.is_full_rank()) {
-      // Stepped in batches, so that a scheme can run them side by side; small
-      // ones, so that their states are still in cache from the test above.
-      free_bodies_.push_back(i);
-      if (free_bodies_.size() == kFreeBatch) StepFreeBodies();
-      continue;
+      if (model.is_full_rank()) {
+        free_batch_.push_back(i);
+        free_batch_before_.push_back(state);
+        if (free_batch_.size() == kFreeBatch) StepFreeBatch();
+        continue;
+      }
+    } else if (!model.is_full_rank() &&
+               loads_[i].DroppedTorque(state.orientation.toRotationMatrix()) >
+                   kDroppedCoupleTolerance_Nm) {
+      ++dropped_couples_;
     }
     const BodyState before = state;
-    integrator_->Step(model, load, options_.dt_s, &state);
+    integrator_->Step(model, loaded_[i] ? &loads_[i] : nullptr, options_.dt_s, &state);
     FinishStep(i, before);
   }
-  StepFreeBodies();
+  StepFreeBatch();
   ++steps_;
 }
 
-void World::StepFreeBodies() {
-  if (free_bodies_.empty()) return;
-  free_faults_.clear();
-  integrator_->StepFree(models_, free_bodies_, options_.dt_s, &states_, &free_faults_);
-  for (const auto& [body, fault] : free_faults_) Freeze(body, fault);
-  free_bodies_.clear();
+void World::StepFreeBatch() {
+  if (free_batch_.empty()) return;
+  integrator_->StepFree(models_, free_batch_, options_.dt_s, &states_);
+  for (std::size_t k = 0; k < free_batch_.size(); ++k) FinishStep(free_batch_[k], free_batch_before_[k]);
+  free_batch_.clear();
+  free_batch_before_.clear();
 }
 
 void World::FinishStep(std::size_t body, const BodyState& before) {

@@ -1,37 +1,23 @@
 #include "rigid_body_sim/core/wrench_table.h"
 
+#include <cassert>
 #include <cmath>
 
 namespace rigid_body_sim::core {
 
-const char* ToString(WrenchRejection rejection) {
-  switch (rejection) {
-    case WrenchRejection::kAccepted: return "accepted";
-    case WrenchRejection::kNonFinite: return "non_finite";
-    case WrenchRejection::kUnknownBody: return "unknown_body";
-    case WrenchRejection::kParticleOutOfRange: return "particle_out_of_range";
-  }
-  return "unknown";
-}
-
 WrenchTable::WrenchTable(std::vector<std::size_t> particle_counts)
     : particle_counts_(std::move(particle_counts)) {}
 
-WrenchRejection WrenchTable::Hold(const ParticleWrench& wrench) {
-  if (wrench.body >= particle_counts_.size()) return WrenchRejection::kUnknownBody;
-  if (wrench.particle >= particle_counts_[wrench.body]) {
-    return WrenchRejection::kParticleOutOfRange;
-  }
-  if (!wrench.force.allFinite() || !wrench.couple.allFinite() || !std::isfinite(wrench.start_s)) {
-    return WrenchRejection::kNonFinite;
-  }
+void WrenchTable::Hold(const ParticleWrench& wrench) {
+  assert(wrench.body < particle_counts_.size());
+  assert(wrench.particle < particle_counts_[wrench.body]);
+  assert(wrench.force.allFinite() && wrench.couple.allFinite() && std::isfinite(wrench.start_s));
   const auto [it, inserted] = index_.try_emplace(Key(wrench.body, wrench.particle), entries_.size());
   if (inserted) {
     entries_.push_back(wrench);
   } else {
     entries_[it->second] = wrench;
   }
-  return WrenchRejection::kAccepted;
 }
 
 void WrenchTable::Clear() {

@@ -5,9 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <set>
-#include <unordered_map>
 
-#include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
 
@@ -219,15 +217,9 @@ void ParseBody(const XmlRpcValue& body, std::vector<core::BodyModel>* models,
   const Eigen::Vector3d angular_velocity = ReadOptionalVector3(body, "angular_velocity");
 
   models->emplace_back(name, std::move(particles));
-  const core::BodyState state = core::StateFromTwist(models->back(), position, orientation,
-                                                     linear_velocity, angular_velocity);
-  // The spin limit needs dt, which the world checks; here: overflow and c.
-  const core::BodyFault fault = core::CheckState(models->back(), state, 0.0);
-  if (fault != core::BodyFault::kNone) {
-    throw SceneError(std::string("linear_velocity/angular_velocity give an initial state that is ") +
-                     core::ToString(fault));
-  }
-  initial_states->push_back(state);
+  // Unique names and a state within CheckState's bounds are the World's to check.
+  initial_states->push_back(core::StateFromTwist(models->back(), position, orientation,
+                                                 linear_velocity, angular_velocity));
 }
 
 // Private parameters, each with its SPEC default; errors name "~key".
@@ -288,11 +280,8 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
                      "), got " + FormatNumber(settings.publish_rate_hz));
   }
   settings.integrator = params.String("integrator", settings.integrator);
-  const std::vector<std::string>& known = core::IntegratorNames();
-  if (std::find(known.begin(), known.end(), settings.integrator) == known.end()) {
-    std::string names;
-    for (const auto& known_name : known) names += (names.empty() ? "" : ", ") + known_name;
-    throw SceneError("~integrator: unknown '" + settings.integrator + "' (known: " + names + ")");
+  if (core::FindIntegrator(settings.integrator) == nullptr) {
+    throw SceneError("~integrator: " + core::UnknownIntegratorMessage(settings.integrator));
   }
   settings.gravity_mps2 = params.Vector3("gravity", settings.gravity_mps2);
   settings.wrench_timeout_s = params.Number("wrench_timeout", settings.wrench_timeout_s);
@@ -326,7 +315,6 @@ void ParseBodies(const XmlRpcValue& bodies, std::vector<core::BodyModel>* models
     throw SceneError("~bodies has " + std::to_string(bodies.size()) + " entries, at most " +
                      std::to_string(kMaxBodies) + " are allowed");
   }
-  std::unordered_map<std::string, int> first_entry;  // name → index of its body
   for (int i = 0; i < bodies.size(); ++i) {
     std::string entry = "bodies[" + std::to_string(i) + "]";
     const XmlRpcValue& body = bodies[i];
@@ -348,10 +336,6 @@ void ParseBodies(const XmlRpcValue& bodies, std::vector<core::BodyModel>* models
     if (!IsValidBodyName(name)) {
       throw SceneError(entry + ": name must be a letter then letters, digits or '_' "
                                "(it names a TF frame and topics)");
-    }
-    const auto [previous, inserted] = first_entry.emplace(static_cast<const std::string&>(name), i);
-    if (!inserted) {
-      throw SceneError(entry + ": name duplicates bodies[" + std::to_string(previous->second) + "]");
     }
     try {
       ParseBody(body, models, initial_states);

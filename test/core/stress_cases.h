@@ -68,7 +68,7 @@ inline bool DrawWrenches(std::mt19937_64* rng, double max_force, double max_coup
     const Eigen::Vector3d v(normal(*rng), normal(*rng), normal(*rng));
     return (max_norm * unit(*rng) / v.norm()) * v;
   };
-  world->wrenches().Clear();
+  world->ClearWrenches();
   for (std::size_t b = 0; b < world->size(); ++b) {
     const int count = 1 + static_cast<int>(3.0 * unit(*rng)) % 3;
     for (int i = 0; i < count; ++i) {
@@ -80,7 +80,7 @@ inline bool DrawWrenches(std::mt19937_64* rng, double max_force, double max_coup
       w.force = random_vector(max_force);
       if (unit(*rng) < 0.5) w.couple = random_vector(max_couple);
       w.start_s = world->time();
-      if (world->wrenches().Hold(w) != WrenchRejection::kAccepted) return false;
+      world->HoldWrench(w);
     }
   }
   return true;

@@ -1,47 +1,60 @@
-// One time-stepping scheme for a single rigid body, selectable by name.
+// One time-stepping scheme for a single rigid body, selectable by name from
+// one table (IntegratorTable): its name, order, summary and factory.
 #pragma once
 
 #include <memory>
 #include <string>
-#include <utility>
 #include <vector>
 
-#include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/load.h"
 
 namespace rigid_body_sim::core {
 
+class Integrator;
+
+// One row of the integrator table.
+struct IntegratorInfo {
+  const char* name;
+  int order;             // global order of accuracy on smooth problems
+  const char* summary;   // one line for users
+  std::unique_ptr<Integrator> (*make)();
+};
+
 class Integrator {
  public:
   virtual ~Integrator() = default;
-  virtual const char* name() const = 0;
-  // Global order of accuracy on smooth problems.
-  virtual int order() const = 0;
+  const char* name() const { return info_->name; }
+  int order() const { return info_->order; }
+
   // Advances `state` by dt_s. `load` is null for a free body (no force, no
   // torque), which lets the scheme skip its force pass.
   virtual void Step(const BodyModel& model, const Load* load, double dt_s,
                     BodyState* state) const = 0;
-  // Advances the full-rank, force- and torque-free bodies `bodies` (indices
-  // into models and states) by dt_s, as Step with a null load would, and
-  // checks each new state with CheckState: a body that breaks a bound keeps
-  // its old state and is listed in `faults`. A scheme may step several bodies
-  // at a time in SIMD lanes; this default steps them one by one.
+  // Advances the free bodies `bodies` (indices into models and states; each
+  // full rank, with neither force nor torque) by dt_s, as Step with a null
+  // load would. A scheme may step several at a time in SIMD lanes; this
+  // default steps them one by one. Checking the new states is the caller's.
   virtual void StepFree(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
-                        double dt_s, std::vector<BodyState>* states,
-                        std::vector<std::pair<std::size_t, BodyFault>>* faults) const;
+                        double dt_s, std::vector<BodyState>* states) const;
 
- protected:
-  // One free body through Step and CheckState; on a fault the old state stays.
-  BodyFault StepFreeChecked(const BodyModel& model, double dt_s, BodyState* state) const;
+ private:
+  friend std::unique_ptr<Integrator> MakeIntegrator(const std::string& name);
+  const IntegratorInfo* info_ = nullptr;
 };
 
-// The names MakeIntegrator accepts, default first.
+// Every scheme, the default first.
+const std::vector<IntegratorInfo>& IntegratorTable();
+// The names of IntegratorTable(), in its order.
 const std::vector<std::string>& IntegratorNames();
 extern const char* const kDefaultIntegrator;
 
-// Throws std::invalid_argument naming the unknown integrator and the known ones.
+// The table's row for `name`, or nullptr.
+const IntegratorInfo* FindIntegrator(const std::string& name);
+// "unknown integrator 'x' (known: a, b, ...)": the one message for a bad name.
+std::string UnknownIntegratorMessage(const std::string& name);
+// Throws std::invalid_argument with UnknownIntegratorMessage.
 std::unique_ptr<Integrator> MakeIntegrator(const std::string& name);
 
 }  // namespace rigid_body_sim::core

@@ -31,7 +31,8 @@ class World {
  public:
   // Throws std::invalid_argument on an unknown integrator, dt <= 0, duplicate
   // or empty body names, a states/models size mismatch, or an initial state
-  // that CheckState rejects (named with the body and the reason).
+  // that CheckState rejects, each named as "bodies[i] (name 'n'): ...".
+  // These are the scene's only checks of names and initial states.
   World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
         const WorldOptions& options);
 
@@ -48,9 +49,10 @@ class World {
   double time() const { return options_.start_time_s + static_cast<double>(steps_) * options_.dt_s; }
   std::uint64_t step_count() const { return steps_; }
 
-  // Advances every body from t_n to t_(n+1) with the wrenches active at t_n.
-  // A body whose state would break a CheckState bound keeps its last good
-  // state and is frozen from then on; the others go on.
+  // Advances every body from t_n to t_(n+1) with the wrenches active at t_n
+  // and gravity. A body whose state would break a CheckState bound keeps its
+  // last good state and is frozen from then on; the others go on. This is
+  // the only place that freezes a body.
   void Step();
 
   // Every body back to its initial state, wrenches cleared, faults cleared;
@@ -63,7 +65,9 @@ class World {
   BodyFault fault(std::size_t body) const { return faults_[body]; }
   std::size_t frozen_count() const { return frozen_count_; }
 
-  WrenchTable& wrenches() { return wrenches_; }
+  // Holds a checked particle wrench (WrenchTable::Hold).
+  void HoldWrench(const ParticleWrench& wrench) { wrenches_.Hold(wrench); }
+  void ClearWrenches() { wrenches_.Clear(); }
   const WrenchTable& wrenches() const { return wrenches_; }
 
   // Steps in which a body's pure couple had a component along a null
@@ -76,8 +80,9 @@ class World {
   // is frozen).
   void FinishStep(std::size_t body, const BodyState& before);
   void Freeze(std::size_t body, BodyFault fault);
-  // Steps the bodies in free_bodies_ through StepFree and empties it.
-  void StepFreeBodies();
+  // Steps the bodies in free_batch_ through StepFree, checks each, and
+  // empties it.
+  void StepFreeBatch();
 
   std::vector<BodyModel> models_;
   std::vector<BodyState> initial_states_;
@@ -85,13 +90,14 @@ class World {
   WorldOptions options_;
   std::unique_ptr<Integrator> integrator_;
   WrenchTable wrenches_;
-  std::vector<HeldLoads> loads_;          // this step's wrenches, bodies with loaded_ set
-  std::vector<HeldLoads> gravity_loads_;  // M g alone, for bodies without wrenches
+  // This step's loads (held wrenches and gravity) of the bodies with loaded_ set.
+  std::vector<HeldLoads> loads_;
   std::vector<char> loaded_;
   std::vector<BodyFault> faults_;
-  // This step's full-rank bodies without load, for StepFree, and its faults.
-  std::vector<std::size_t> free_bodies_;
-  std::vector<std::pair<std::size_t, BodyFault>> free_faults_;
+  // Free bodies (full rank, moving, no load) of this step, stepped in
+  // batches through Integrator::StepFree, and their states before it.
+  std::vector<std::size_t> free_batch_;
+  std::vector<BodyState> free_batch_before_;
   std::size_t frozen_count_ = 0;
   bool has_gravity_ = false;
   std::uint64_t steps_ = 0;

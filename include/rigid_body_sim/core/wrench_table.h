@@ -26,17 +26,15 @@ struct ParticleWrench {
   double start_s = 0.0;                              // active from this simulation time
 };
 
-enum class WrenchRejection { kAccepted, kNonFinite, kUnknownBody, kParticleOutOfRange };
-const char* ToString(WrenchRejection rejection);
-
 class WrenchTable {
  public:
   // particle_counts[b] is the number of particles of body b.
   explicit WrenchTable(std::vector<std::size_t> particle_counts);
 
-  // Holds `wrench`, replacing the one held for the same particle; a rejected
-  // wrench changes nothing.
-  WrenchRejection Hold(const ParticleWrench& wrench);
+  // Holds `wrench`, replacing the one held for the same particle. The caller
+  // has checked it (the node's wrench intake): a known body and particle,
+  // finite numbers. Debug builds assert this.
+  void Hold(const ParticleWrench& wrench);
   void Clear();
   std::size_t size() const { return entries_.size(); }
 

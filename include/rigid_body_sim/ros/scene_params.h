@@ -49,7 +49,9 @@ class SceneError : public std::runtime_error {
 Scene LoadScene(const ros::NodeHandle& private_nh);
 
 // The `bodies` list alone (a particle list or a generated shape per entry),
-// so that it can be checked without a master. Throws SceneError.
+// so that it can be checked without a master. Throws SceneError. Unique
+// names and initial states within core::CheckState's bounds are checked by
+// the core::World built from the result.
 void ParseBodies(const XmlRpc::XmlRpcValue& bodies, std::vector<core::BodyModel>* models,
                  std::vector<core::BodyState>* initial_states);
 

@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "step_parts.h"
 
 // One clone of the kernel per x86-64 level, picked by the loader; elsewhere
 // the compiler's default vectorisation.
@@ -14,10 +15,6 @@
 
 namespace rigid_body_sim::core {
 namespace {
-
-// Yoshida's weights, as in casimir_splitting4.cpp.
-const double kOuterWeight = 1.0 / (2.0 - std::cbrt(2.0));
-const double kInnerWeight = 1.0 - 2.0 * kOuterWeight;
 
 struct Quaternion {
   double x, y, z, w;
@@ -67,8 +64,8 @@ FreeLanes::FreeLanes() {
 // seven axis flows, the rotation about L by c|L|h, back to the body frame.
 RBS_SIMD_CLONES void CasimirFreeStep4(double h, FreeLanes* lanes) {
   FreeLanes& b = *lanes;
-  const double outer = kOuterWeight * h;
-  const double inner = kInnerWeight * h;
+  const double outer = kYoshidaOuterWeight * h;
+  const double inner = kYoshidaInnerWeight * h;
   for (std::size_t l = 0; l < kFreeLanes; ++l) {
     const double drift = h * (1.0 / b.mass[l]);
     for (int k = 0; k < 3; ++k) b.position[k][l] += drift * b.linear_momentum[k][l];

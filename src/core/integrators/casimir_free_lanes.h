@@ -4,7 +4,6 @@
 // in SIMD registers (AVX-512, AVX2 or SSE2, picked when the program loads).
 #pragma once
 
-#include <cmath>
 #include <cstddef>
 
 #include "casimir_step.h"
@@ -18,8 +17,7 @@ constexpr std::size_t kFreeLanes = 8;
 // Whether a body may take the lanes: dt·|L|·max_k(1/λ_k) <= 1/16, so that
 // every half-angle of its step is below 1/16 (the triple jump's longest
 // sub-step is 1.70 dt), where SinCosSmall's series is exact to round-off.
-// Then |ω|·dt is far below π, and p and L do not change in a free step, so of
-// CheckState's bounds only the finiteness of x and q could newly fail.
+// Then |ω|·dt is far below π.
 inline bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double dt_s) {
   constexpr double kMaxTurn = 1.0 / 16;
   const double turn_rate = dt_s * model.inverse_principal_moments().maxCoeff();
@@ -62,16 +60,10 @@ struct FreeLanes {
     axis3[lane] = split.axis3;
   }
   // Writes the lane's position and orientation (the only parts a free step
-  // changes) to `state` if they are finite; false (and `state` untouched) if
-  // not.
-  bool Store(std::size_t lane, BodyState* state) const {
-    double sum = 0.0;
-    for (int k = 0; k < 3; ++k) sum += position[k][lane];
-    for (int k = 0; k < 4; ++k) sum += orientation[k][lane];
-    if (!std::isfinite(sum)) return false;
+  // changes) to `state`.
+  void Store(std::size_t lane, BodyState* state) const {
     for (int k = 0; k < 3; ++k) state->position[k] = position[k][lane];
     for (int k = 0; k < 4; ++k) state->orientation.coeffs()[k] = orientation[k][lane];
-    return true;
   }
 };
 

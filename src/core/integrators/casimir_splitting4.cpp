@@ -1,25 +1,20 @@
 #include "rigid_body_sim/core/integrators/casimir_splitting4.h"
 
-#include <cmath>
-
 #include "casimir_free_lanes.h"
 #include "casimir_step.h"
 #include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "step_parts.h"
 
 namespace rigid_body_sim::core {
 namespace {
-
-// Yoshida (1990): w1 + w0 + w1 = 1 and 2 w1³ + w0³ = 0.
-const double kOuterWeight = 1.0 / (2.0 - std::cbrt(2.0));
-const double kInnerWeight = 1.0 - 2.0 * kOuterWeight;
 
 // The triple jump without kicks: B(a/2) C(a) B((a+b)/2) C(b) B((b+a)/2) C(a)
 // B(a/2) with a = w1 h, b = w0 h, then the merged Casimir rotation over h.
 // When B or C vanishes (λ1 = λ2 or λ2 = λ3) the flows commute and the
 // composition collapses to one exact flow each.
 void FreeStep(const BodyModel& model, const CasimirSplit& split, double h, BodyState* state) {
-  const double outer = kOuterWeight * h;
-  const double inner = kInnerWeight * h;
+  const double outer = kYoshidaOuterWeight * h;
+  const double inner = kYoshidaInnerWeight * h;
   state->position += h * model.inverse_mass() * state->linear_momentum;
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
   Eigen::Quaterniond principal = state->orientation * body_from_principal;
@@ -50,35 +45,29 @@ void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load,
     FreeStep(model, split, dt_s, state);
     return;
   }
-  const double outer = kOuterWeight * dt_s;
-  const double inner = kInnerWeight * dt_s;
+  const double outer = kYoshidaOuterWeight * dt_s;
+  const double inner = kYoshidaInnerWeight * dt_s;
   CasimirStrangStep(model, split, load, 0.0, outer, state);
   CasimirStrangStep(model, split, load, outer, inner, state);
   CasimirStrangStep(model, split, load, outer + inner, outer, state);
 }
 
-void CasimirSplitting4Integrator::StepFree(
-    const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies, double dt_s,
-    std::vector<BodyState>* states, std::vector<std::pair<std::size_t, BodyFault>>* faults) const {
+void CasimirSplitting4Integrator::StepFree(const std::vector<BodyModel>& models,
+                                           const std::vector<std::size_t>& bodies, double dt_s,
+                                           std::vector<BodyState>* states) const {
   FreeLanes lanes;
   std::size_t lane_bodies[kFreeLanes];
   std::size_t filled = 0;
   const auto step_lanes = [&] {
     CasimirFreeStep4(dt_s, &lanes);
-    for (std::size_t l = 0; l < filled; ++l) {
-      if (!lanes.Store(l, &(*states)[lane_bodies[l]])) {
-        faults->emplace_back(lane_bodies[l], BodyFault::kNonFinite);
-      }
-    }
+    for (std::size_t l = 0; l < filled; ++l) lanes.Store(l, &(*states)[lane_bodies[l]]);
     filled = 0;
   };
   for (const std::size_t body : bodies) {
     const BodyModel& model = models[body];
     BodyState& state = (*states)[body];
     if (!FitsFreeLanes(model, state, dt_s)) {
-      // Too fast for the lanes' series: the scalar step.
-      const BodyFault fault = StepFreeChecked(model, dt_s, &state);
-      if (fault != BodyFault::kNone) faults->emplace_back(body, fault);
+      Step(model, nullptr, dt_s, &state);  // too fast for the lanes' series
       continue;
     }
     lanes.Load(filled, model, state);

@@ -1,21 +1,13 @@
 #include "casimir_step.h"
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "step_parts.h"
 
 namespace rigid_body_sim::core {
-namespace {
-
-void HalfKick(const Load& load, double t_s, double h, BodyState* state) {
-  const Wrench wrench = load.At(t_s, state->orientation.toRotationMatrix());
-  state->linear_momentum += 0.5 * h * wrench.force;
-  if (load.has_torque()) state->angular_momentum += 0.5 * h * wrench.torque;
-}
-
-}  // namespace
 
 void CasimirStrangStep(const BodyModel& model, const CasimirSplit& split, const Load* load,
                        double t_offset_s, double h, BodyState* state) {
-  if (load != nullptr) HalfKick(*load, t_offset_s, h, state);
+  if (load != nullptr) Kick(*load, t_offset_s, 0.5 * h, state);
   state->position += h * model.inverse_mass() * state->linear_momentum;
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
   Eigen::Quaterniond principal = state->orientation * body_from_principal;
@@ -25,7 +17,7 @@ void CasimirStrangStep(const BodyModel& model, const CasimirSplit& split, const 
   AxisFlow<0>(split.axis1, 0.5 * h, &body_momentum, &principal);
   principal = ExpMap(h * split.casimir * state->angular_momentum) * principal;
   state->orientation = (principal * body_from_principal.conjugate()).normalized();
-  if (load != nullptr) HalfKick(*load, t_offset_s + h, h, state);
+  if (load != nullptr) Kick(*load, t_offset_s + h, 0.5 * h, state);
 }
 
 }  // namespace rigid_body_sim::core

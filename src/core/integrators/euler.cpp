@@ -1,6 +1,7 @@
 #include "rigid_body_sim/core/integrators/euler.h"
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "rigid_body_sim/core/kinematics.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -17,7 +18,7 @@ void EulerIntegrator::Step(const BodyModel& model, const Load* load, double dt_s
                            BodyState* state) const {
   Eigen::Matrix3d a = state->orientation.toRotationMatrix();
   // ω = I⁻¹L with I⁻¹ = A Ī⁻¹ Aᵀ: what the seed computed at the end of the previous step.
-  const Eigen::Vector3d omega = a * (model.inverse_inertia() * (a.transpose() * state->angular_momentum));
+  const Eigen::Vector3d omega = AngularVelocity(model, a, state->angular_momentum);
   const Wrench wrench = load != nullptr ? load->At(0.0, a) : Wrench{};
   state->position += dt_s * model.inverse_mass() * state->linear_momentum;
   state->linear_momentum += dt_s * wrench.force;

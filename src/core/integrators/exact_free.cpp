@@ -1,21 +1,13 @@
 #include "rigid_body_sim/core/integrators/exact_free.h"
 
 #include "rigid_body_sim/core/reference/torque_free.h"
+#include "step_parts.h"
 
 namespace rigid_body_sim::core {
-namespace {
-
-void HalfKick(const Load& load, double t_s, double dt_s, BodyState* state) {
-  const Wrench wrench = load.At(t_s, state->orientation.toRotationMatrix());
-  state->linear_momentum += 0.5 * dt_s * wrench.force;
-  state->angular_momentum += 0.5 * dt_s * wrench.torque;
-}
-
-}  // namespace
 
 void ExactFreeIntegrator::Step(const BodyModel& model, const Load* load, double dt_s,
                                BodyState* state) const {
-  if (load != nullptr) HalfKick(*load, 0.0, dt_s, state);
+  if (load != nullptr) Kick(*load, 0.0, 0.5 * dt_s, state);
   state->position += dt_s * model.inverse_mass() * state->linear_momentum;
   // The free flow in the principal frame: q_WP = q_WB ⊗ q_BP, Π = R_WPᵀ L;
   // L in the world does not change.
@@ -25,7 +17,7 @@ void ExactFreeIntegrator::Step(const BodyModel& model, const Load* load, double 
                                 principal_orientation.conjugate() * state->angular_momentum,
                                 principal_orientation);
   state->orientation = (motion.Orientation(dt_s) * body_from_principal.conjugate()).normalized();
-  if (load != nullptr) HalfKick(*load, dt_s, dt_s, state);
+  if (load != nullptr) Kick(*load, dt_s, 0.5 * dt_s, state);
 }
 
 }  // namespace rigid_body_sim::core

@@ -1,5 +1,7 @@
 #include "rigid_body_sim/core/integrators/rk4.h"
 
+#include "rigid_body_sim/core/kinematics.h"
+
 namespace rigid_body_sim::core {
 namespace {
 
@@ -22,7 +24,7 @@ Derivative Evaluate(const BodyModel& model, const Load* load, double t_s, const 
   const Eigen::Quaterniond q(y.orientation[0], y.orientation[1], y.orientation[2],
                              y.orientation[3]);
   const Eigen::Matrix3d a = q.normalized().toRotationMatrix();
-  const Eigen::Vector3d omega = a * (model.inverse_inertia() * (a.transpose() * y.angular_momentum));
+  const Eigen::Vector3d omega = AngularVelocity(model, a, y.angular_momentum);
   Derivative d;
   d.velocity = model.inverse_mass() * y.linear_momentum;
   // q̇ = ½ (0, ω) ⊗ q for ω in world axes.

@@ -1,17 +1,9 @@
 #include "strang_step.h"
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "step_parts.h"
 
 namespace rigid_body_sim::core {
-namespace {
-
-void Kick(const Load& load, double t_s, double h, BodyState* state) {
-  const Wrench wrench = load.At(t_s, state->orientation.toRotationMatrix());
-  state->linear_momentum += h * wrench.force;
-  if (load.has_torque()) state->angular_momentum += h * wrench.torque;
-}
-
-}  // namespace
 
 void StrangStep(const BodyModel& model, const Load* load, double t_offset_s, double h,
                 BodyState* state) {

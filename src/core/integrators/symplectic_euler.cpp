@@ -1,6 +1,7 @@
 #include "rigid_body_sim/core/integrators/symplectic_euler.h"
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "rigid_body_sim/core/kinematics.h"
 
 namespace rigid_body_sim::core {
 
@@ -12,8 +13,7 @@ void SymplecticEulerIntegrator::Step(const BodyModel& model, const Load* load, d
     state->linear_momentum += dt_s * wrench.force;
     state->angular_momentum += dt_s * wrench.torque;
   }
-  const Eigen::Vector3d omega =
-      a * (model.inverse_inertia() * (a.transpose() * state->angular_momentum));
+  const Eigen::Vector3d omega = AngularVelocity(model, a, state->angular_momentum);
   state->orientation = (ExpMap(dt_s * omega) * state->orientation).normalized();
   state->position += dt_s * model.inverse_mass() * state->linear_momentum;
 }

@@ -14,8 +14,6 @@ namespace rigid_body_sim::core {
 
 class CasimirSplittingIntegrator final : public Integrator {
  public:
-  const char* name() const override { return "casimir_splitting"; }
-  int order() const override { return 2; }
   void Step(const BodyModel& model, const Load* load, double dt_s,
             BodyState* state) const override;
 };

@@ -14,13 +14,10 @@ namespace rigid_body_sim::core {
 
 class CasimirSplitting4Integrator final : public Integrator {
  public:
-  const char* name() const override { return "casimir_splitting4"; }
-  int order() const override { return 4; }
   void Step(const BodyModel& model, const Load* load, double dt_s,
             BodyState* state) const override;
   void StepFree(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
-                double dt_s, std::vector<BodyState>* states,
-                std::vector<std::pair<std::size_t, BodyFault>>* faults) const override;
+                double dt_s, std::vector<BodyState>* states) const override;
 };
 
 }  // namespace rigid_body_sim::core

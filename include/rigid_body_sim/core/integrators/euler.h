@@ -10,8 +10,6 @@ namespace rigid_body_sim::core {
 
 class EulerIntegrator final : public Integrator {
  public:
-  const char* name() const override { return "euler"; }
-  int order() const override { return 1; }
   void Step(const BodyModel& model, const Load* load, double dt_s,
             BodyState* state) const override;
 };

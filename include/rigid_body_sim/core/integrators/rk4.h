@@ -9,8 +9,6 @@ namespace rigid_body_sim::core {
 
 class Rk4Integrator final : public Integrator {
  public:
-  const char* name() const override { return "rk4"; }
-  int order() const override { return 4; }
   void Step(const BodyModel& model, const Load* load, double dt_s,
             BodyState* state) const override;
 };

@@ -12,8 +12,6 @@ namespace rigid_body_sim::core {
 
 class SplittingIntegrator final : public Integrator {
  public:
-  const char* name() const override { return "splitting"; }
-  int order() const override { return 2; }
   void Step(const BodyModel& model, const Load* load, double dt_s,
             BodyState* state) const override;
 };

@@ -1,11 +1,11 @@
-#include "rigid_body_sim/ros/conservation_monitor.h"
+#include "rigid_body_sim/core/conservation_monitor.h"
 
 #include <cmath>
 #include <limits>
 
 #include "rigid_body_sim/core/kinematics.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
 double RelativeChange(double value, double reference) {
@@ -15,9 +15,9 @@ double RelativeChange(double value, double reference) {
 
 }  // namespace
 
-ConservationMonitor::ConservationMonitor(const core::World& world) { RebaseAll(world); }
+ConservationMonitor::ConservationMonitor(const World& world) { RebaseAll(world); }
 
-void ConservationMonitor::RebaseAll(const core::World& world) {
+void ConservationMonitor::RebaseAll(const World& world) {
   references_.resize(world.size());
   loaded_.assign(world.size(), false);
   for (std::size_t body = 0; body < world.size(); ++body) Rebase(world, body);
@@ -26,11 +26,11 @@ void ConservationMonitor::RebaseAll(const core::World& world) {
   last_sweep_ = Largest{};
 }
 
-void ConservationMonitor::Rebase(const core::World& world, std::size_t body) {
+void ConservationMonitor::Rebase(const World& world, std::size_t body) {
   references_[body] = Of(world, body);
 }
 
-std::optional<ConservationMonitor::Drift> ConservationMonitor::Measure(const core::World& world,
+std::optional<ConservationMonitor::Drift> ConservationMonitor::Measure(const World& world,
                                                                        std::size_t body) const {
   if (loaded_[body]) return std::nullopt;
   const Invariants now = Of(world, body);
@@ -41,7 +41,7 @@ std::optional<ConservationMonitor::Drift> ConservationMonitor::Measure(const cor
   return drift;
 }
 
-void ConservationMonitor::Sweep(const core::World& world, std::size_t count) {
+void ConservationMonitor::Sweep(const World& world, std::size_t count) {
   for (std::size_t i = 0; i < count && world.size() > 0; ++i) {
     const std::size_t body = sweep_cursor_;
     if (const std::optional<Drift> drift = Measure(world, body)) {
@@ -64,14 +64,14 @@ void ConservationMonitor::Sweep(const core::World& world, std::size_t count) {
   }
 }
 
-ConservationMonitor::Invariants ConservationMonitor::Of(const core::World& world, std::size_t body) {
-  const core::BodyModel& model = world.model(body);
-  const core::BodyState& state = world.state(body);
+ConservationMonitor::Invariants ConservationMonitor::Of(const World& world, std::size_t body) {
+  const BodyModel& model = world.model(body);
+  const BodyState& state = world.state(body);
   Invariants invariants;
   invariants.angular_momentum_norm = state.angular_momentum.norm();
   invariants.rotational_energy =
-      core::KineticEnergy(model, state) - 0.5 * state.linear_momentum.squaredNorm() * model.inverse_mass();
+      KineticEnergy(model, state) - 0.5 * state.linear_momentum.squaredNorm() * model.inverse_mass();
   return invariants;
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

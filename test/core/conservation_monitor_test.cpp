@@ -4,26 +4,26 @@
 
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/world.h"
-#include "rigid_body_sim/ros/conservation_monitor.h"
+#include "rigid_body_sim/core/conservation_monitor.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 namespace {
 
-core::World ThreeTumblingBoxes() {
-  std::vector<core::BodyModel> models;
-  std::vector<core::BodyState> states(3);
+World ThreeTumblingBoxes() {
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states(3);
   for (int i = 0; i < 3; ++i) {
-    models.emplace_back("box" + std::to_string(i), core::MakeBox(1.0, {0.2, 0.3, 0.4}, 2));
+    models.emplace_back("box" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2));
     states[i].angular_momentum = {0.01, 0.02 * (i + 1), 0.0};
   }
-  return core::World(std::move(models), std::move(states), core::WorldOptions{});
+  return World(std::move(models), std::move(states), WorldOptions{});
 }
 
 TEST(ConservationMonitor, SweepReportsTheLargestDriftOnceAPassIsComplete) {
-  core::World world = ThreeTumblingBoxes();
+  World world = ThreeTumblingBoxes();
   ConservationMonitor monitor(world);
   // Box 1's |L| grows by 10 % behind the monitor's back (no Rebase).
-  core::BodyState pushed = world.state(1);
+  BodyState pushed = world.state(1);
   pushed.angular_momentum *= 1.1;
   world.SetBodyState(1, pushed);
 
@@ -49,4 +49,4 @@ TEST(ConservationMonitor, SweepReportsTheLargestDriftOnceAPassIsComplete) {
 }
 
 }  // namespace
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

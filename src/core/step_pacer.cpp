@@ -1,9 +1,9 @@
-#include "rigid_body_sim/ros/step_pacer.h"
+#include "rigid_body_sim/core/step_pacer.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 StepPacer::StepPacer(double dt_s, double real_time_factor, double max_catch_up_s)
     : paced_(real_time_factor > 0.0),
@@ -43,4 +43,4 @@ StepPacer::Clock::time_point StepPacer::next_due() const {
   return anchor_ + period_ * static_cast<Clock::rep>(taken_since_anchor_);
 }
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

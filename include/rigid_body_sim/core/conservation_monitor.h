@@ -10,18 +10,18 @@
 
 #include "rigid_body_sim/core/world.h"
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class ConservationMonitor {
  public:
   // Every body torque-free, referenced at the world's current state.
-  explicit ConservationMonitor(const core::World& world);
+  explicit ConservationMonitor(const World& world);
 
   // Takes the current states as the new references; every body torque-free
   // again (after a reset or when the held wrenches were cleared).
-  void RebaseAll(const core::World& world);
+  void RebaseAll(const World& world);
   // Takes one body's current state as its reference (after it was set).
-  void Rebase(const core::World& world, std::size_t body);
+  void Rebase(const World& world, std::size_t body);
   // A wrench was held for the body: it no longer conserves anything.
   void MarkLoaded(std::size_t body) { loaded_[body] = true; }
 
@@ -31,7 +31,7 @@ class ConservationMonitor {
     double rotational_energy = 0.0;
   };
   // Nothing for a body that had a wrench since its reference.
-  std::optional<Drift> Measure(const core::World& world, std::size_t body) const;
+  std::optional<Drift> Measure(const World& world, std::size_t body) const;
 
   // The largest |drift| of each kind over the torque-free bodies, and whose.
   struct Largest {
@@ -44,7 +44,7 @@ class ConservationMonitor {
   // Measures the next `count` bodies, round robin, so that a large scene's
   // sweep is spread over many steps instead of stalling one; keeps the last
   // completed sweep.
-  void Sweep(const core::World& world, std::size_t count);
+  void Sweep(const World& world, std::size_t count);
   const Largest& last_sweep() const { return last_sweep_; }
 
  private:
@@ -52,7 +52,7 @@ class ConservationMonitor {
     double angular_momentum_norm = 0.0;
     double rotational_energy = 0.0;
   };
-  static Invariants Of(const core::World& world, std::size_t body);
+  static Invariants Of(const World& world, std::size_t body);
 
   std::vector<Invariants> references_;
   std::vector<bool> loaded_;
@@ -61,4 +61,4 @@ class ConservationMonitor {
   Largest last_sweep_;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

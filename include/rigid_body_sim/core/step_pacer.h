@@ -6,7 +6,7 @@
 #include <chrono>
 #include <cstdint>
 
-namespace rigid_body_sim {
+namespace rigid_body_sim::core {
 
 class StepPacer {
  public:
@@ -42,4 +42,4 @@ class StepPacer {
   std::uint64_t catch_up_limit_hits_ = 0;
 };
 
-}  // namespace rigid_body_sim
+}  // namespace rigid_body_sim::core

@@ -1,0 +1,24 @@
+// The check of a ~set_body_state request: the state it asks for, or why not.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <geometry_msgs/Pose.h>
+#include <geometry_msgs/Twist.h>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_state.h"
+
+namespace rigid_body_sim {
+
+// The state a request asks for (pose and twist of the COM, world axes), or
+// nullopt with `reason` set: every number finite, a non-zero quaternion
+// (normalised), and a state the world accepts (core::CheckState at dt_s:
+// below the speed of light, |ω|·dt < π, nothing that overflows).
+std::optional<core::BodyState> StateFromRequest(const core::BodyModel& model,
+                                                const geometry_msgs::Pose& pose,
+                                                const geometry_msgs::Twist& twist, double dt_s,
+                                                std::string* reason);
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,101 @@
+// Every inbound particle wrench, from a message or an array entry, checked
+// once (SPEC "Time and wrench semantics"): a known body and particle, finite
+// numbers, a known frame. What passes becomes a core wrench with its start
+// time; what fails is counted by reason and warned about (throttled), and
+// changes nothing else. The core's wrench table trusts what comes out.
+#pragma once
+
+#include <algorithm>
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <unordered_map>
+#include <vector>
+
+#include <rigid_body_sim/ParticleWrench.h>
+#include <rigid_body_sim/ParticleWrenchArray.h>
+#include <ros/time.h>
+
+#include "rigid_body_sim/core/wrench_table.h"
+#include "rigid_body_sim/core/world.h"
+
+namespace rigid_body_sim {
+
+// Why a wrench message (or array entry) was not held.
+enum class WrenchMsgRejection {
+  kNone,
+  kNonFinite,
+  kUnknownBody,
+  kParticleOutOfRange,
+  kUnknownFrame,
+  kTooManyEntries,  // array entries past WrenchIntake::kMaxArrayEntries
+};
+constexpr std::size_t kWrenchMsgRejectionCount = 6;
+// "non_finite", "unknown_body", "particle_out_of_range", "unknown_frame",
+// "too_many_entries" (the diagnostics key is "rejected_" + this).
+const char* ToString(WrenchMsgRejection rejection);
+
+// What a message is checked against: the scene's bodies and the frames that
+// name world axes and each body's axes.
+struct WrenchFrames {
+  std::string world_frame;
+  std::string tf_prefix;
+  std::unordered_map<std::string, std::size_t> body_index;  // name → scene order
+  std::vector<std::size_t> particle_counts;                 // per body
+};
+WrenchFrames MakeWrenchFrames(const core::World& world, const std::string& world_frame,
+                              const std::string& tf_prefix);
+
+struct CheckedWrench {
+  core::ParticleWrench wrench;                        // valid when accepted
+  WrenchMsgRejection rejection = WrenchMsgRejection::kNone;
+  std::string detail;                                 // one line for the warning
+  bool accepted() const { return rejection == WrenchMsgRejection::kNone; }
+};
+
+// The check itself, without counting. A frame_id "" or the world frame →
+// world axes; the body's name, with or without tf_prefix, → body axes; a
+// leading '/' is ignored (tf1 habit). Times are simulation times counted
+// from `start_stamp`: a zero stamp starts at `next_step_time_s`, the time of
+// the next step; any other at stamp − start_stamp (exact, in nanoseconds).
+CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
+                                  const ros::Time& start_stamp, double next_step_time_s);
+
+class WrenchIntake {
+ public:
+  // Entries of one array taken per message (about 1 ms of work), so that one
+  // huge array cannot stall the stepping loop; the rest are rejected unread.
+  static constexpr std::size_t kMaxArrayEntries = 10000;
+
+  explicit WrenchIntake(WrenchFrames frames) : frames_(std::move(frames)) {}
+
+  // The checked wrench, or nullopt with the rejection counted and warned.
+  std::optional<core::ParticleWrench> Take(const ParticleWrench& msg, const ros::Time& start_stamp,
+                                           double next_step_time_s);
+  // Every entry in order through Take, each accepted one handed to `hold`.
+  template <typename Hold>
+  void TakeArray(const ParticleWrenchArray& msg, const ros::Time& start_stamp,
+                 double next_step_time_s, Hold&& hold) {
+    const std::size_t taken = std::min(msg.wrenches.size(), kMaxArrayEntries);
+    for (std::size_t i = 0; i < taken; ++i) {
+      if (const auto wrench = Take(msg.wrenches[i], start_stamp, next_step_time_s)) hold(*wrench);
+    }
+    if (taken < msg.wrenches.size()) RejectExcessEntries(msg.wrenches.size() - taken);
+  }
+
+  std::uint64_t rejected_messages() const { return rejected_messages_; }
+  std::uint64_t rejected(WrenchMsgRejection reason) const {
+    return rejected_by_reason_[static_cast<std::size_t>(reason)];
+  }
+
+ private:
+  void RejectExcessEntries(std::size_t count);
+
+  const WrenchFrames frames_;
+  std::uint64_t rejected_messages_ = 0;
+  std::array<std::uint64_t, kWrenchMsgRejectionCount> rejected_by_reason_{};
+};
+
+}  // namespace rigid_body_sim
