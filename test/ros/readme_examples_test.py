@@ -73,6 +73,7 @@ SKIP_PREFIXES = ('bash scripts/', 'source ', 'roslaunch ', '. ')
 STREAMING_ECHO = ('echo', 'hz', 'bw', 'delay')
 REL_TOL = 0.05           # dp/dt, dL/dt vs. the held wrenches (bodies spin up to ~20 rad/s)
 ABS_TOL = 2e-3           # N, N m
+KEEP_MSGS = 3000         # ~bodies messages kept (30 s at 100 Hz); count() counts them all
 
 
 # ---- README parsing ---------------------------------------------------------
@@ -216,7 +217,8 @@ class ReadmeExamples(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('readme_examples_test', anonymous=True)
         cls.lock = threading.Lock()
-        cls.bodies_msgs = []      # (receipt wall time, BodyStateArray)
+        cls.bodies_msgs = []      # (receipt wall time, BodyStateArray), the last KEEP_MSGS
+        cls.bodies_total = 0      # ~bodies messages received since the start
         cls.particles = {}        # stamp ns -> MarkerArray (recent only)
         rospy.Subscriber(NODE + '/bodies', BodyStateArray, cls._on_bodies, queue_size=1000)
         rospy.Subscriber(NODE + '/particles', MarkerArray, cls._on_particles, queue_size=1000)
@@ -225,7 +227,8 @@ class ReadmeExamples(unittest.TestCase):
     def _on_bodies(cls, msg):
         with cls.lock:
             cls.bodies_msgs.append((time.time(), msg))
-            del cls.bodies_msgs[:-3000]
+            cls.bodies_total += 1
+            del cls.bodies_msgs[:-KEEP_MSGS]
 
     @classmethod
     def _on_particles(cls, msg):
@@ -241,7 +244,7 @@ class ReadmeExamples(unittest.TestCase):
 
     def count(self):
         with self.lock:
-            return len(self.bodies_msgs)
+            return self.bodies_total
 
     def last(self):
         with self.lock:
@@ -249,7 +252,8 @@ class ReadmeExamples(unittest.TestCase):
 
     def since(self, n):
         with self.lock:
-            return [m for _, m in self.bodies_msgs[n:]]
+            first = self.bodies_total - len(self.bodies_msgs)   # index of bodies_msgs[0]
+            return [m for _, m in self.bodies_msgs[max(0, n - first):]]
 
     def wait_new(self, n0, count, timeout, where):
         deadline = time.time() + timeout
