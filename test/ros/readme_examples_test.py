@@ -1,16 +1,31 @@
 #!/usr/bin/python3
-"""The README's node examples, run against a running node so that they cannot rot.
+"""The ROS commands of the documents, checked so that they cannot rot.
 
-The README section between `<!-- node:begin -->` and `<!-- node:end -->` is
-read at test time; every ```bash fenced block in it is split into commands
-(joining `\\` continuations and quoted strings that span lines). Commands that
-call `rostopic` or `rosservice` are run in README order with `/bin/bash -c`
-against the node started by readme_examples.test (launch/rigid_body_sim.launch
-with its defaults: node `/rigid_body_sim`, the default scene). Build and launch
-lines (`bash scripts/...`, `source ...`, `roslaunch ...`) are skipped; any other
-command makes the test fail, so a new kind of example cannot go unchecked.
+Read at test time: README.md, every doc/*.md and bench/README.md, in that
+order (doc/ sorted by name). Every ```bash fenced block is split into commands
+(joining `\\` continuations and quoted strings that span lines, leading
+`VAR=value` words dropped). A command is
 
-For each command:
+- `rostopic ...` / `rosservice ...`: run, in document order, with `/bin/bash -c`
+  against the node started by readme_examples.test (launch/rigid_body_sim.launch
+  with its defaults: node `/rigid_body_sim`, the default scene), and its effect
+  checked (below);
+- `roslaunch [options] <package> <file> [name:=value ...]`, or
+  `bash scripts/run.sh [name:=value ...]` (which runs
+  `roslaunch rigid_body_sim rigid_body_sim.launch "$@"`, checked in the script):
+  not started (a second node would clash with the one under test) but
+  resolved: `roslaunch --nodes` with the same file and arguments must succeed,
+  every `name` must be an argument the launch file declares
+  (`roslaunch --ros-args`), and an `integrator:=` value must be a name of the
+  integrator table in doc/physics.md;
+- `rostest [options] <package> <file>`: the file must exist in the package,
+  exactly once, and `roslaunch --nodes` must load it;
+- anything else that names a ROS command-line tool (`rosrun`, `rosparam`, a
+  `roslaunch` after `&&`, ...): a failure, so that no such command goes
+  unchecked; a ROS command in a fenced block that is not ```bash fails too;
+- any other command (build and shell set-up lines): not run.
+
+For each command run against the node:
 - it exits with code 0 within COMMAND_TIMEOUT s; a command that runs until
   interrupted (`rostopic echo/hz/bw/delay` without `-n`, `rostopic pub`
   without `-1`) runs for STREAM_SECONDS s, is interrupted and must have
@@ -23,10 +38,10 @@ For each command:
     message pushes with a non-zero wrench changed its momentum or angular
     momentum, and, for every body, dp/dt and dL/dt measured between two
     consecutive `~bodies` messages equal the force and torque of the wrenches
-    held (a model of them kept by this test: world or body axes per frame_id,
-    a later wrench for the same (body, particle) replaces an earlier one, a
-    zero one removes it; torque = sum of r_i x f_i plus couples, with r_i from
-    `~particles`);
+    held (a model of them kept by this test across all documents: world or
+    body axes per frame_id, a later wrench for the same (body, particle)
+    replaces an earlier one, a zero one removes it; torque = sum of r_i x f_i
+    plus couples, with r_i from `~particles`);
   * `~clear_wrenches`: the model is emptied, so every dp/dt and dL/dt is 0;
   * `~reset`: every body's p, L and kinetic energy equal those published at
     start (invariants of the torque-free motion), stamps still increase;
@@ -39,7 +54,7 @@ For each command:
 - the node's PID is the same at the end as at the start (with respawn on, a
   crash would otherwise go unnoticed).
 
-A failure names the README line number and the command.
+A failure names the document, the line number and the command.
 """
 import math
 import os
@@ -69,39 +84,68 @@ COMMAND_TIMEOUT = 20.0   # s; `rostopic pub -1` takes about 3 s
 STREAM_SECONDS = 4.0     # s a never-ending command runs before it is interrupted
 STARTUP_TIMEOUT = 30.0   # s to wait for the node's first ~bodies message
 RUN_COMMANDS = ('rostopic', 'rosservice')
-SKIP_PREFIXES = ('bash scripts/', 'source ', 'roslaunch ', '. ')
+# A command that names one of these anywhere but as handled below fails the test.
+ROS_TOOLS = ('rostopic', 'rosservice', 'roslaunch', 'rostest', 'rosrun', 'rosparam', 'rosnode',
+             'rosmsg', 'rossrv', 'roscore', 'rosbag', 'rosbash', 'roswtf', 'rviz', 'rqt')
+RUN_SCRIPT = 'scripts/run.sh'           # `bash scripts/run.sh ARGS` = roslaunch of ...
+RUN_SCRIPT_LAUNCH = ['rigid_body_sim', 'rigid_body_sim.launch']   # ... this file with ARGS
+# roslaunch / rostest options that take a value.
+OPTIONS_WITH_VALUE = {
+    'roslaunch': ('-c', '--child', '-u', '--server_uri', '--run_id', '-p', '--port', '--pid', '-w',
+                  '--numworkers', '-t', '--timeout', '--master-logger-level', '--sigint-timeout',
+                  '--sigterm-timeout', '--args', '--find-node'),
+    'rostest': ('--pkgdir', '--package', '--results-filename', '--results-base-dir'),
+}
 STREAMING_ECHO = ('echo', 'hz', 'bw', 'delay')
 REL_TOL = 0.05           # dp/dt, dL/dt vs. the held wrenches (bodies spin up to ~20 rad/s)
 ABS_TOL = 2e-3           # N, N m
+KEEP_MSGS = 3000         # ~bodies messages kept (30 s at 100 Hz); count() counts them all
 
 
-# ---- README parsing ---------------------------------------------------------
+# ---- the documents ----------------------------------------------------------
 
-def readme_path():
-    return os.path.join(rospkg.RosPack().get_path(PKG), 'README.md')
-
-
-def node_section(text):
-    begin = text.index('<!-- node:begin -->')
-    end = text.index('<!-- node:end -->')
-    first_line = text.count('\n', 0, begin) + 1
-    return text[begin:end], first_line
+def package_dir():
+    return rospkg.RosPack().get_path(PKG)
 
 
-def bash_commands(section, first_line):
-    """[(README line number, command text)] of every ```bash block, in order."""
+def documents():
+    """[(path relative to the package, absolute path)] in the order they are run."""
+    root = package_dir()
+    docs = ['README.md']
+    doc_dir = os.path.join(root, 'doc')
+    if os.path.isdir(doc_dir):
+        docs += sorted(os.path.join('doc', f) for f in os.listdir(doc_dir) if f.endswith('.md'))
+    if os.path.isfile(os.path.join(root, 'bench', 'README.md')):
+        docs.append(os.path.join('bench', 'README.md'))
+    return [(d, os.path.join(root, d)) for d in docs]
+
+
+def bash_commands(text, name):
+    """[(line number, command text)] of every ```bash block, in order. A line of
+    another fenced block that starts with a ROS tool raises ValueError."""
     commands = []
-    in_bash = False
+    in_bash = in_other = False
     buf, buf_line = [], None
-    for offset, line in enumerate(section.split('\n')):
-        lineno = first_line + offset
+    for lineno, line in enumerate(text.split('\n'), 1):
         stripped = line.strip()
         if stripped.startswith('```'):
             if in_bash and buf:
-                raise ValueError('README line %d: unterminated command at the end of a '
-                                 'bash block: %r' % (buf_line, '\n'.join(buf)))
-            in_bash = (not in_bash) and stripped == '```bash'
+                raise ValueError('%s line %d: unterminated command at the end of a '
+                                 'bash block: %r' % (name, buf_line, '\n'.join(buf)))
+            if in_bash or in_other:
+                in_bash = in_other = False
+            elif stripped == '```bash':
+                in_bash = True
+            else:
+                in_other = True
             buf, buf_line = [], None
+            continue
+        if in_other:
+            first = stripped.lstrip('$ ').split(' ', 1)[0]
+            if os.path.basename(first) in ROS_TOOLS or RUN_SCRIPT in stripped.split(' ', 2)[:2]:
+                raise ValueError('%s line %d: a ROS command outside a ```bash block, where '
+                                 'readme_examples_test.py does not check it: %r'
+                                 % (name, lineno, stripped))
             continue
         if not in_bash:
             continue
@@ -110,37 +154,114 @@ def bash_commands(section, first_line):
         if not buf:
             buf_line = lineno
         buf.append(line)
-        text = '\n'.join(buf)
-        if text.rstrip().endswith('\\'):
+        command = '\n'.join(buf)
+        if command.rstrip().endswith('\\'):
             continue
         try:
-            shlex.split(text, comments=True)
+            shlex.split(command, comments=True)
         except ValueError:       # a quoted string goes on over the next line
             continue
-        commands.append((buf_line, text))
+        commands.append((buf_line, command))
         buf, buf_line = [], None
     return commands
 
 
+def all_commands():
+    """[(document, line number, command)] of every document, in order."""
+    out = []
+    for name, path in documents():
+        with open(path) as f:
+            out += [(name, lineno, c) for lineno, c in bash_commands(f.read(), name)]
+    return out
+
+
 def words(command):
-    return shlex.split(command.replace('\\\n', ' '), comments=True)
+    """The command's words, without leading `VAR=value` assignments."""
+    w = shlex.split(command.replace('\\\n', ' '), comments=True)
+    while w and re.match(r'^[A-Za-z_][A-Za-z0-9_]*=', w[0]):
+        w = w[1:]
+    return w
 
 
 def classify(command):
-    """'run', 'stream' (runs until interrupted) or 'skip'; None: unknown."""
+    """'run', 'stream' (runs until interrupted), 'launch', 'rostest' or 'skip' (no
+    ROS tool in it); None: a ROS tool used in a way this test does not check."""
     w = words(command)
-    flat = ' '.join(w)
-    if any(flat.startswith(p) for p in SKIP_PREFIXES):
-        return 'skip'
-    if not w or w[0] not in RUN_COMMANDS:
+    if w and w[0] == 'bash' and len(w) > 1 and w[1] == RUN_SCRIPT:
+        kind = 'launch'
+        rest = w[2:]
+    elif w and w[0] in RUN_COMMANDS:
+        kind = 'run'
+        rest = w[1:]
+        if w[0] == 'rostopic' and len(w) > 1:
+            if w[1] in STREAMING_ECHO and not any(a == '-n' or a.startswith('-n') for a in w[2:]):
+                kind = 'stream'
+            if w[1] == 'pub' and not any(a in ('-1', '--once') or a.startswith('-f')
+                                         for a in w[2:]):
+                kind = 'stream'
+    elif w and w[0] == 'roslaunch':
+        kind, rest = 'launch', w[1:]
+    elif w and w[0] == 'rostest':
+        kind, rest = 'rostest', w[1:]
+    else:
+        kind, rest = 'skip', w
+    # Another command chained on (`&&`, `;`, `|`) or a ROS tool in a non-ROS line.
+    tools = [a for a in rest if os.path.basename(a) in ROS_TOOLS or a.endswith(RUN_SCRIPT)]
+    if tools or (kind != 'skip' and any(a in ('&&', '||', ';', '|', '&') for a in rest)):
         return None
-    if w[0] == 'rostopic' and len(w) > 1:
-        if w[1] in STREAMING_ECHO and not any(a == '-n' or a.startswith('-n') for a in w[2:]):
-            return 'stream'
-        if w[1] == 'pub' and not any(a in ('-1', '--once') or a.startswith('-f')
-                                     for a in w[2:]):
-            return 'stream'
-    return 'run'
+    if kind == 'skip' and (RUN_SCRIPT in command or re.search(
+            r'(?<![\w.-])(%s)(?![\w.-])' % '|'.join(ROS_TOOLS), command)):
+        return None  # e.g. `source x&&roslaunch ...`
+    return kind
+
+
+def split_launch_args(tool, args):
+    """(files, [(name, value)]) of the arguments of a roslaunch/rostest command line."""
+    files, launch_args, skip = [], [], False
+    for a in args:
+        if skip:
+            skip = False
+            continue
+        if a.startswith('-'):
+            skip = a in OPTIONS_WITH_VALUE[tool]
+            continue
+        if ':=' in a:
+            name, value = a.split(':=', 1)
+            launch_args.append((name, value))
+        else:
+            files.append(a)
+    return files, launch_args
+
+
+def integrator_names():
+    """The names of the integrator table in doc/physics.md (`| name | order |`)."""
+    path = os.path.join(package_dir(), 'doc', 'physics.md')
+    names, in_table = [], False
+    with open(path) as f:
+        for line in f:
+            if re.match(r'^\|\s*name\s*\|\s*order\s*\|', line):
+                in_table = True
+                continue
+            if in_table:
+                m = re.match(r'^\|\s*`([a-z0-9_]+)`\s*\|', line)
+                if m:
+                    names.append(m.group(1))
+                elif not line.startswith('|'):
+                    break
+    return names
+
+
+def run_tool(args, timeout=60.0):
+    proc = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=timeout)
+    return (proc.returncode, proc.stdout.decode(errors='replace'),
+            proc.stderr.decode(errors='replace'))
+
+
+def declared_launch_args(files):
+    rc, out, err = run_tool(['roslaunch', '--ros-args'] + files)
+    if rc != 0:
+        return None, out + err
+    return set(re.findall(r'(?m)^  ([^\s:(]+)(?: \(default |: )', out)), out
 
 
 def positional(args):
@@ -216,7 +337,8 @@ class ReadmeExamples(unittest.TestCase):
     def setUpClass(cls):
         rospy.init_node('readme_examples_test', anonymous=True)
         cls.lock = threading.Lock()
-        cls.bodies_msgs = []      # (receipt wall time, BodyStateArray)
+        cls.bodies_msgs = []      # (receipt wall time, BodyStateArray), the last KEEP_MSGS
+        cls.bodies_total = 0      # ~bodies messages received since the start
         cls.particles = {}        # stamp ns -> MarkerArray (recent only)
         rospy.Subscriber(NODE + '/bodies', BodyStateArray, cls._on_bodies, queue_size=1000)
         rospy.Subscriber(NODE + '/particles', MarkerArray, cls._on_particles, queue_size=1000)
@@ -225,7 +347,8 @@ class ReadmeExamples(unittest.TestCase):
     def _on_bodies(cls, msg):
         with cls.lock:
             cls.bodies_msgs.append((time.time(), msg))
-            del cls.bodies_msgs[:-3000]
+            cls.bodies_total += 1
+            del cls.bodies_msgs[:-KEEP_MSGS]
 
     @classmethod
     def _on_particles(cls, msg):
@@ -241,7 +364,7 @@ class ReadmeExamples(unittest.TestCase):
 
     def count(self):
         with self.lock:
-            return len(self.bodies_msgs)
+            return self.bodies_total
 
     def last(self):
         with self.lock:
@@ -249,7 +372,8 @@ class ReadmeExamples(unittest.TestCase):
 
     def since(self, n):
         with self.lock:
-            return [m for _, m in self.bodies_msgs[n:]]
+            first = self.bodies_total - len(self.bodies_msgs)   # index of bodies_msgs[0]
+            return [m for _, m in self.bodies_msgs[max(0, n - first):]]
 
     def wait_new(self, n0, count, timeout, where):
         deadline = time.time() + timeout
@@ -268,10 +392,9 @@ class ReadmeExamples(unittest.TestCase):
         self.assertEqual(code, 1)
         return pid
 
-    def run_command(self, lineno, command, kind):
-        where = 'README.md line %d: `%s`' % (lineno, command.strip())
+    def run_command(self, where, command, kind):
         proc = subprocess.Popen(['/bin/bash', '-c', command], stdout=subprocess.PIPE,
-                                stderr=subprocess.PIPE, start_new_session=True)
+                                stderr=subprocess.PIPE, process_group=0)
         limit = STREAM_SECONDS if kind == 'stream' else COMMAND_TIMEOUT
         timed_out = False
         try:
@@ -295,7 +418,7 @@ class ReadmeExamples(unittest.TestCase):
         else:
             self.assertFalse(timed_out, '%s: did not finish within %.0f s\n%s'
                              % (where, COMMAND_TIMEOUT, ctx))
-            self.assertEqual(proc.returncode, 0, 'README command failed: %s' % ctx)
+            self.assertEqual(proc.returncode, 0, 'documented command failed: %s' % ctx)
         return out, ctx
 
     # -- the wrench model and the momentum rates --------------------------------
@@ -359,7 +482,7 @@ class ReadmeExamples(unittest.TestCase):
         self.assertGreaterEqual(checked, 1)
 
     def apply_push(self, where, args, before):
-        """Update the held-wrench model from a `rostopic pub` of the README."""
+        """Update the held-wrench model from a documented `rostopic pub`."""
         pos = positional(args[2:])
         self.assertGreaterEqual(len(pos), 3, '%s: expected topic, type and message' % where)
         topic, msg_type, text = pos[0], pos[1], ' '.join(pos[2:])
@@ -396,21 +519,82 @@ class ReadmeExamples(unittest.TestCase):
 
     # -- the tests --------------------------------------------------------------
 
-    def test_readme_examples(self):
-        path = readme_path()
-        with open(path) as f:
-            section, first_line = node_section(f.read())
-        commands = bash_commands(section, first_line)
-        kinds = [(lineno, cmd, classify(cmd)) for lineno, cmd in commands]
-        unknown = ['line %d: %s' % (l, c) for l, c, k in kinds if k is None]
-        self.assertFalse(unknown, 'README bash commands neither run by this test nor known '
-                         'build/launch lines (extend readme_examples_test.py):\n'
+    def classified(self):
+        """[(document, line, command, kind)] of every document; fails on a command
+        that uses a ROS tool in a way this test does not check."""
+        try:
+            commands = all_commands()
+        except ValueError as e:
+            self.fail(str(e))
+        kinds = [(doc, l, c, classify(c)) for doc, l, c in commands]
+        unknown = ['%s line %d: %s' % (d, l, c) for d, l, c, k in kinds if k is None]
+        self.assertFalse(unknown, 'documented commands that use a ROS tool in a way this test '
+                         'does not check (write one plain rostopic, rosservice, roslaunch or '
+                         'rostest command per line, or extend readme_examples_test.py):\n'
                          + '\n'.join(unknown))
-        to_run = [(l, c, k) for l, c, k in kinds if k != 'skip']
-        self.assertTrue(any(words(c)[:2] == ['rostopic', 'pub'] for _, c, _ in to_run),
-                        'no `rostopic pub` example found in %s' % path)
-        self.assertTrue(any(words(c)[0] == 'rosservice' for _, c, _ in to_run),
-                        'no `rosservice` example found in %s' % path)
+        return kinds
+
+    def test_launch_and_rostest_lines(self):
+        """Every roslaunch (and `bash scripts/run.sh`) line resolves its launch file
+        with its arguments; every rostest line names a test file of the package."""
+        import roslib.packages
+        checked = 0
+        integrators = None
+        for doc, lineno, command, kind in self.classified():
+            if kind not in ('launch', 'rostest'):
+                continue
+            w = words(command)
+            where = '%s line %d: `%s`' % (doc, lineno, ' '.join(w))
+            rospy.loginfo('checking %s', where)
+            if w[0] == 'bash':
+                with open(os.path.join(package_dir(), RUN_SCRIPT)) as f:
+                    script = f.read()
+                self.assertIn('roslaunch %s "$@"' % ' '.join(RUN_SCRIPT_LAUNCH), script,
+                              '%s: %s no longer runs roslaunch %s with its arguments; update '
+                              'RUN_SCRIPT_LAUNCH in readme_examples_test.py'
+                              % (where, RUN_SCRIPT, ' '.join(RUN_SCRIPT_LAUNCH)))
+                files, launch_args = split_launch_args('roslaunch', w[2:])
+                files = RUN_SCRIPT_LAUNCH + files
+            else:
+                files, launch_args = split_launch_args(w[0], w[1:])
+            self.assertIn(len(files), (1, 2), '%s: expected <package> <file> or a path, got %r'
+                          % (where, files))
+            if kind == 'rostest':
+                if len(files) == 2:
+                    found = roslib.packages.find_resource(files[0], files[1])
+                    self.assertEqual(len(found), 1, '%s: %s in package %s: found %r, expected '
+                                     'exactly one file' % (where, files[1], files[0], found))
+                else:
+                    self.assertTrue(os.path.isfile(files[0]), '%s: no file %s'
+                                    % (where, files[0]))
+            argv = ['%s:=%s' % a for a in launch_args]
+            rc, out, err = run_tool(['roslaunch', '--nodes'] + files + argv)
+            self.assertEqual(rc, 0, '%s: `roslaunch --nodes %s` failed (exit %d):\n%s%s'
+                             % (where, ' '.join(files + argv), rc, out[-3000:], err[-3000:]))
+            if launch_args:
+                declared, report = declared_launch_args(files)
+                self.assertIsNotNone(declared, '%s: `roslaunch --ros-args` failed:\n%s'
+                                     % (where, report))
+                undeclared = [n for n, _ in launch_args if n not in declared]
+                self.assertFalse(undeclared, '%s: argument(s) %s not declared by the launch file '
+                                 '(it declares %s)' % (where, ', '.join(undeclared),
+                                                       ', '.join(sorted(declared))))
+            for name, value in launch_args:
+                if name == 'integrator' and value:
+                    if integrators is None:
+                        integrators = integrator_names()
+                    self.assertIn(value, integrators, '%s: integrator %r is not in the table of '
+                                  'doc/physics.md %r' % (where, value, integrators))
+            checked += 1
+        self.assertGreaterEqual(checked, 1, 'no roslaunch line found in the documents')
+
+    def test_topic_and_service_commands(self):
+        kinds = self.classified()
+        to_run = [(d, l, c, k) for d, l, c, k in kinds if k in ('run', 'stream')]
+        self.assertTrue(any(words(c)[:2] == ['rostopic', 'pub'] for _, _, c, _ in to_run),
+                        'no `rostopic pub` example found in the documents')
+        self.assertTrue(any(words(c)[0] == 'rosservice' for _, _, c, _ in to_run),
+                        'no `rosservice` example found in the documents')
 
         # The node is up, the scene is torque-free (default scene: no gravity).
         self.wait_new(0, 1, STARTUP_TIMEOUT, 'start-up')
@@ -426,16 +610,16 @@ class ReadmeExamples(unittest.TestCase):
         paused = False
         last_before_pause = None
 
-        for lineno, command, kind in to_run:
-            where = 'README.md line %d: `%s`' % (lineno, ' '.join(words(command)))
+        for doc, lineno, command, kind in to_run:
+            where = '%s line %d: `%s`' % (doc, lineno, ' '.join(words(command)))
             rospy.loginfo('running %s', where)
             args = words(command)
             before = self.last()
             n_before = self.count()
             if kind == 'stream':
-                self.run_command(lineno, command, kind)
+                self.run_command(where, command, kind)
                 continue
-            out, ctx = self.run_command(lineno, command, kind)
+            out, ctx = self.run_command(where, command, kind)
 
             if args[0] == 'rostopic' and args[1] == 'echo':
                 self.assertIn('---', out, '%s: printed no message\n%s' % (where, ctx))
@@ -501,7 +685,7 @@ class ReadmeExamples(unittest.TestCase):
             if not paused:
                 self.check_rates(where)
 
-        self.assertEqual(self.node_pid(), pid, 'the node restarted during the README '
+        self.assertEqual(self.node_pid(), pid, 'the node restarted during the documented '
                          'examples (it crashed and was respawned)')
 
     def check_reset(self, where, initial, before):
