@@ -50,7 +50,7 @@ struct AppliedForce {
 };
 std::vector<AppliedForce> ForcesAt(const Scene& scene, double t_s, const Eigen::Matrix3d& rotation);
 
-// The scenes of issue 4's work-precision study, in a fixed order.
+// The scenes of the work-precision study, in a fixed order.
 std::vector<Scene> WorkPrecisionScenes();
 
 }  // namespace rigid_body_sim::bench

@@ -36,7 +36,7 @@
 //   step at ANGULAR_MOTION_THRESHOLD = π/4 rad (the velocity itself is kept;
 //   the capped angle with the uncapped axis vector, renormalised, gives a
 //   rotation a little short of dt |ω|). At dt = 1 ms this bites above
-//   785 rad/s: issue 4's 1000 rad/s spin point is wrong for every Bullet
+//   785 rad/s: a 1000 rad/s spin point is wrong for every Bullet
 //   configuration (measured: 2.9 rad after 0.1 s about a principal axis,
 //   where 500 rad/s is exact to 1e-13). The π/2-per-step clamp (MAX_ANGVEL)
 //   in btRigidBody::integrateVelocities is not on this path:

@@ -222,7 +222,7 @@ void ParseBody(const XmlRpcValue& body, std::vector<core::BodyModel>* models,
                                                  linear_velocity, angular_velocity));
 }
 
-// Private parameters, each with its SPEC default; errors name "~key".
+// Private parameters, each with its documented default; errors name "~key".
 class ParamReader {
  public:
   explicit ParamReader(const ros::NodeHandle& nh) : nh_(nh) {}

@@ -1,5 +1,5 @@
 // Measured order of every integrator: the error ratio when dt halves must be
-// 2^p within the bands (1.8–2.2, 3.6–4.4, 14–18), with dt chosen in
+// 2^p within the bands (1.8–2.2, 3.6–4.4, 14–18), with dt chosen in
 // the asymptotic range and the errors far above the round-off floor.
 #include <gtest/gtest.h>
 

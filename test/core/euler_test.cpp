@@ -14,7 +14,7 @@ Eigen::Matrix3d Tilde(const Eigen::Vector3d& w) {
   return m;
 }
 
-// One step of the seed's "Simulation step" written out line by line on A,
+// One step of the lecture's "Simulation step" written out line by line on A,
 // with its Gram–Schmidt, independent of the integrator's code path.
 TEST(Euler, ReproducesTheSeedStepByHand) {
   const BodyModel body = test::DiagonalBody({1.0, 2.0, 2.5}, {0.1, 0.2, 0.3});
@@ -37,7 +37,7 @@ TEST(Euler, ReproducesTheSeedStepByHand) {
   const Eigen::Vector3d v1 = v0 + dt * force / m;
   Eigen::Matrix3d a1 = a0 + dt * Tilde(omega0) * a0;
   const Eigen::Vector3d l1 = l0 + dt * tau;
-  // Gram–Schmidt, the seed's formulas
+  // Gram–Schmidt, the lecture's formulas
   const Eigen::Vector3d b1 = a1.col(0) / a1.col(0).norm();
   Eigen::Vector3d b2 = a1.col(1) - b1.dot(a1.col(1)) * b1;
   b2 /= b2.norm();

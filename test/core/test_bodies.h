@@ -12,7 +12,7 @@
 namespace rigid_body_sim::core::test {
 
 // Four unit masses at ±a e_x, ±b e_y (a = 1 m, b = √½ m): a flat body with
-// Ī = diag(1, 2, 3) kg m² in its own axes, the Dzhanibekov body.
+// Ī = diag(1, 2, 3) kg m² in its own axes, the headline scene's Dzhanibekov body.
 inline BodyModel Diag123Body() {
   const double a = 1.0;
   const double b = std::sqrt(0.5);

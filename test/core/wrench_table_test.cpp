@@ -33,7 +33,7 @@ ParticleWrench WorldForce(std::size_t body, std::size_t particle, const Eigen::V
 
 TEST_F(WrenchTableTest, ReducesToForceAndTorqueAboutTheCom) {
   // Random world- and body-axes forces and couples at a random orientation,
-  // against the seed's τ = Σ r_i × f_i summed directly in world axes.
+  // against the lecture's τ = Σ r_i × f_i summed directly in world axes.
   std::mt19937 rng(3);
   std::normal_distribution<double> n(0.0, 1.0);
   const Eigen::Matrix3d a =

@@ -1,4 +1,4 @@
-// Bad wrench input (SPEC "Time and wrench semantics": a message with a NaN or
+// Bad wrench input (doc/node.md, "Time, frames and pacing": a message with a NaN or
 // infinite number, an unknown body, a particle index out of range or an
 // unknown frame is rejected: a throttled warning naming the reason, a count on
 // diagnostics — key `rejected_messages`, one per message or array entry, plus
@@ -7,7 +7,7 @@
 // The node runs (not paused) so /diagnostics keep coming; body "tri" (three
 // 1 kg particles) rests at (1, 2, 3) with no gravity, so "state unchanged"
 // means: exactly that pose, zero twist and momenta, for as long as we watch.
-// The per-reason key names are not fixed by the SPEC; they are matched loosely
+// The per-reason key names are not fixed by doc/node.md; they are matched loosely
 // by substrings. `rejected_messages` is exact.
 #include <cmath>
 #include <limits>

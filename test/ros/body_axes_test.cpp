@@ -1,4 +1,4 @@
-// Body-axes wrenches, pure couples and gravity (SPEC ParticleWrench.msg:
+// Body-axes wrenches, pure couples and gravity (doc/node.md, ParticleWrench.msg:
 // frame_id = body name with or without tf_prefix = body axes; "" or the world
 // frame = world axes; torque = pure couple; parameter `gravity`).
 //

@@ -1,4 +1,4 @@
-// Constant world-axes forces at particles of a body (SPEC "The physics",
+// Constant world-axes forces at particles of a body (doc/physics.md,
 // "Time and wrench semantics"; default integrator: at least 2nd order and
 // exact for a constant force).
 //
@@ -140,7 +140,7 @@ TEST(ConstantForce, GeneralOffCentreForceShortTime) {
   EXPECT_VEC3_NEAR(b->pose.position, kX0[0] + 0.5 * f[0] / kM * t * t,
                    kX0[1] + 0.5 * f[1] / kM * t * t, kX0[2] + 0.5 * f[2] / kM * t * t,
                    kRoundOff);
-  // Unit quaternion (tf2 rejects |q|² off by 1e-3; the SPEC says unit).
+  // Unit quaternion (tf2 rejects |q|² off by 1e-3; doc/node.md says unit).
   const auto& q = b->pose.orientation;
   EXPECT_NEAR(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w, 1.0, 1e-9);
   (void)kIyy;

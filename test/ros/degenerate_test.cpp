@@ -1,4 +1,4 @@
-// Degenerate bodies (SPEC "The physics": one particle (Ī = 0) or collinear
+// Degenerate bodies (doc/physics.md: one particle (Ī = 0) or collinear
 // particles (Ī singular) are legal; Ī⁺ is used; the component of a pure couple
 // along a zero principal moment is dropped and counted on diagnostics; L is
 // kept in the range of I, so the published L equals I ω).

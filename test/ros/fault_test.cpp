@@ -1,4 +1,4 @@
-// A runaway body is frozen, reported, and brought back (reliability issue,
+// A runaway body is frozen, reported, and brought back(
 // item 1). Scene (fault.test): `victim`, a 1 kg box of 8 particles at rest;
 // `bystander`, a 1 kg particle moving at 1 m/s along x.
 #include <cmath>

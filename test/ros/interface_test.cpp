@@ -1,10 +1,10 @@
-// The node's interface (SPEC "Node", "Subscribed", "Published", "Services",
+// The node's interface (doc/node.md, "Time, frames and pacing", "Subscribed", "Published", "Services",
 // parameters world_frame, tf_prefix, publish_clock).
 //
 // Topics and their types are read from the node's own slave API
 // (getPublications / getSubscriptions), before this test advertises or
 // subscribes anything itself, so the types are the node's. Services are
-// checked by calling each with its SPEC type: roscpp refuses a call whose type
+// checked by calling each with its documented type: roscpp refuses a call whose type
 // (md5) differs, so a successful call proves the type.
 //
 // Scene (interface.test): world_frame "odom", tf_prefix "sim/", publish_clock;
@@ -120,7 +120,7 @@ TEST(Interface, ServicesExistWithTypes) {
   }
   {
     rigid_body_sim::Step srv;
-    srv.request.steps = 0;  // fails by SPEC, but the call goes through
+    srv.request.steps = 0;  // fails as documented, but the call goes through
     EXPECT_TRUE(ros::service::call(sim.Name("step"), srv)) << "~step is not rigid_body_sim/Step";
     EXPECT_FALSE(srv.response.success);
   }

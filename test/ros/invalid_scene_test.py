@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Invalid scenes and parameters stop the node (SPEC "Parameters", last paragraph).
+"""Invalid scenes and parameters stop the node (doc/node.md, "Parameters", last paragraph).
 
 An invalid scene or parameter (missing or empty `bodies`, a duplicate or empty
 name, a mass <= 0 or not finite, a position not of 3 finite numbers, a

@@ -1,5 +1,5 @@
 // Shared helpers for the node's rostests (one scenario per .test file).
-// Written from shared/SPEC.md, not from the node's code: everything here goes
+// Written from doc/node.md, not from the node's code: everything here goes
 // through topics, services and parameters. Every wait is bounded.
 //
 // Timing-free physics checks: pause the node (~set_paused true), hold the
@@ -219,7 +219,7 @@ class Sim {
   std::string Name(const std::string& rel) const { return ns_ + "/" + rel; }
   const std::string& ns() const { return ns_; }
 
-  // Waits for every SPEC service, then subscribes ~bodies and opens the
+  // Waits for every documented service, then subscribes ~bodies and opens the
   // wrench publishers and waits until the node is connected to them.
   ::testing::AssertionResult Connect(double timeout_s = kStartupTimeout) {
     for (const char* s : {"reset", "set_paused", "step", "set_body_state", "clear_wrenches"}) {

@@ -1,4 +1,4 @@
-// Services (SPEC "Services"): ~set_paused pauses integration and publishing;
+// Services (doc/node.md, "Topics and services"): ~set_paused pauses integration and publishing;
 // ~step works only while paused, steps = 0 fails, sim_time is the stamp of the
 // state reached and published (= previous + n·dt); ~reset brings every body
 // back to its initial state, clears wrenches, and time keeps going forward;

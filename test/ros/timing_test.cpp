@@ -1,4 +1,4 @@
-// Stamps and rates (SPEC "Time and wrench semantics": t_n = t_0 + n·dt;
+// Stamps and rates (doc/node.md, "Time, frames and pacing": t_n = t_0 + n·dt;
 // "Every stamp is the simulation time of the state it carries: the start time
 // plus steps × dt. No two messages on a topic carry the same stamp."; /tf one
 // message per publish cycle; publish_rate; real_time_factor 1 paces steps by

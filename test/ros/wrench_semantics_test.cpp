@@ -1,4 +1,4 @@
-// Held-wrench semantics (SPEC "Time and wrench semantics" and
+// Held-wrench semantics (doc/node.md, "Time, frames and pacing" and
 // ParticleWrenchArray.msg), checked exactly with ~set_paused + ~step.
 //
 // Scene (wrench_semantics.test), body "plate" in both nodes: 1 kg at the
@@ -6,7 +6,7 @@
 // particle 0, initial COM (0, 0, 1), at rest. Every force used here has its line
 // through the COM (particle 0; x̂ at 1, 2; ŷ at 3, 4): no torque, so the
 // translation is exact for any scheme of order >= 2 with wrenches constant over
-// each step (SPEC: step n uses the wrenches active at t_n), to round-off.
+// each step (doc/node.md: step n uses the wrenches active at t_n), to round-off.
 // Node /rbs_timeout has wrench_timeout 0.0495 s (49.5 steps).
 #include <cmath>
 

@@ -1,5 +1,5 @@
 // The constant part of a rigid body: mass properties computed once from its
-// point particles (seed: "pre-computation"). Immutable after construction.
+// point particles (lecture: "pre-computation"). Immutable after construction.
 #pragma once
 
 #include <memory>

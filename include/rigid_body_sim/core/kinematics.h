@@ -1,4 +1,4 @@
-// Quantities derived from a body's model and state on demand (seed: ω = I⁻¹L,
+// Quantities derived from a body's model and state on demand (lecture: ω = I⁻¹L,
 // x_i = x_CM + A r̄_i, v_i = v + ω × r_i).
 #pragma once
 

@@ -1,5 +1,5 @@
 // Bodies, their held wrenches, gravity and simulation time: the only place
-// that knows how a step is put together (SPEC "Time and wrench semantics").
+// that knows how a step is put together (doc/node.md, "Time, frames and pacing").
 #pragma once
 
 #include <cstdint>

@@ -1,4 +1,4 @@
-// The particle wrenches held by the world (SPEC "Time and wrench semantics"):
+// The particle wrenches held by the world (doc/node.md, "Time, frames and pacing"):
 // one per (body, particle), replaced by a later one for the same particle,
 // active from its start time and, with a timeout, until start + timeout.
 #pragma once

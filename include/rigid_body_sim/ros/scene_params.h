@@ -1,4 +1,4 @@
-// The node's private parameters (SPEC "Parameters") turned into a validated
+// The node's private parameters (doc/node.md, "Parameters") turned into a validated
 // scene: the settings of the node and the bodies of the world.
 #pragma once
 
@@ -44,7 +44,7 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Reads every private parameter of `private_nh`, with SPEC's defaults.
+// Reads every private parameter of `private_nh`, with their documented defaults.
 // Throws SceneError.
 Scene LoadScene(const ros::NodeHandle& private_nh);
 

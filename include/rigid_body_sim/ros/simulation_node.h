@@ -1,4 +1,4 @@
-// The ROS face of a World (SPEC "Node"): the paced stepping loop and the
+// The ROS face of a World (doc/node.md): the paced stepping loop and the
 // services, wired to the parts that take wrenches in (WrenchIntake), send
 // states out (StatePublisher) and report (NodeDiagnostics). No physics here.
 //

@@ -1,4 +1,4 @@
-// Every outbound per-cycle message (SPEC "Published"): /clock, /tf, each
+// Every outbound per-cycle message (doc/node.md, "Topics and services"): /clock, /tf, each
 // body's pose and twist, ~bodies and ~particles, all from the world's state
 // at one stamp, and each built only while someone subscribes.
 #pragma once

@@ -1,5 +1,5 @@
 // Every inbound particle wrench, from a message or an array entry, checked
-// once (SPEC "Time and wrench semantics"): a known body and particle, finite
+// once (doc/node.md, "Time, frames and pacing"): a known body and particle, finite
 // numbers, a known frame. What passes becomes a core wrench with its start
 // time; what fails is counted by reason and warned about (throttled), and
 // changes nothing else. The core's wrench table trusts what comes out.

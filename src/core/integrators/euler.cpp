@@ -17,7 +17,7 @@ Eigen::Matrix3d Skew(const Eigen::Vector3d& w) {
 void EulerIntegrator::Step(const BodyModel& model, const Load* load, double dt_s,
                            BodyState* state) const {
   Eigen::Matrix3d a = state->orientation.toRotationMatrix();
-  // ω = I⁻¹L with I⁻¹ = A Ī⁻¹ Aᵀ: what the seed computed at the end of the previous step.
+  // ω = I⁻¹L with I⁻¹ = A Ī⁻¹ Aᵀ: what the lecture computes at the end of the previous step.
   const Eigen::Vector3d omega = AngularVelocity(model, a, state->angular_momentum);
   const Wrench wrench = load != nullptr ? load->At(0.0, a) : Wrench{};
   state->position += dt_s * model.inverse_mass() * state->linear_momentum;

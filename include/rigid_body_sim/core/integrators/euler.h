@@ -1,4 +1,4 @@
-// `euler`: the seed's simulation step, exactly, on the rotation matrix A:
+// `euler`: the lecture's simulation step, exactly, on the rotation matrix A:
 // τ, F from the current pose; x += dt·v (old v); v += dt·F/M; A += dt·ω̃A;
 // L += dt·τ; Gram–Schmidt on the columns a1, a2, a3; ω = A Ī⁻¹ Aᵀ L.
 // First order; conserves nothing exactly (|L| and energy drift O(dt)).

@@ -78,7 +78,7 @@ Eigen::Quaterniond ExpMap(const Eigen::Vector3d& rotation_vector);
 void LiePoissonRotation(const BodyModel& model, const Eigen::Vector3d& angular_momentum,
                         double dt_s, Eigen::Quaterniond* orientation);
 
-// Columns a1, a2, a3 made orthonormal by the seed's classical Gram–Schmidt.
+// Columns a1, a2, a3 made orthonormal by the lecture's classical Gram–Schmidt.
 void GramSchmidt(Eigen::Matrix3d* rotation);
 
 }  // namespace rigid_body_sim::core
