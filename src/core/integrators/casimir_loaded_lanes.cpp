@@ -18,25 +18,14 @@ LoadedLanes::LoadedLanes() {
 
 void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const BodyState& state,
                        const HeldLoads& loads) {
+  LoadLane(lane, model, state, this);
   for (int k = 0; k < 3; ++k) {
-    position[k][lane] = state.position[k];
-    linear_momentum[k][lane] = state.linear_momentum[k];
-    angular_momentum[k][lane] = state.angular_momentum[k];
     force_world[k][lane] = loads.force_world()[k];
     force_body[k][lane] = loads.force_body()[k];
     torque_world[k][lane] = loads.torque_world()[k];
     torque_body[k][lane] = loads.torque_body()[k];
     for (int j = 0; j < 3; ++j) moment[3 * k + j][lane] = loads.force_moment()(k, j);
   }
-  for (int k = 0; k < 4; ++k) {
-    orientation[k][lane] = state.orientation.coeffs()[k];
-    principal_axes[k][lane] = model.principal_axes().coeffs()[k];
-  }
-  const CasimirSplit split(model);
-  mass[lane] = model.mass();
-  casimir[lane] = split.casimir;
-  axis1[lane] = split.axis1;
-  axis3[lane] = split.axis3;
 }
 
 void LoadedLanes::Store(std::size_t lane, BodyState* state) const {
