@@ -20,11 +20,6 @@ const char* ToString(BodyFault fault) {
   return "unknown";
 }
 
-BodyFault CheckPose(const BodyState& state) {
-  const double sum = state.position.sum() + state.orientation.coeffs().sum();
-  return std::isfinite(sum) ? BodyFault::kNone : BodyFault::kNonFinite;
-}
-
 BodyFault CheckState(const BodyModel& model, const BodyState& state) {
   // A NaN or an infinity anywhere makes the sum non-finite (so does an
   // overflow of huge finite terms, which is past every bound below anyway).

@@ -64,6 +64,10 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
                                   std::to_string(previous->second) + "]");
     }
     if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
+    const double turn_bound =
+        options_.dt_s * kRateBoundFactor * models_[i].inverse_principal_moments().maxCoeff();
+    const double reach = kMaxSubstepAngle / turn_bound;  // inf for a point mass
+    one_step_momentum_sq_.push_back(reach * reach);
     BodyFault fault = CheckState(models_[i], states_[i]);
     if (fault == BodyFault::kNone && SubstepsFor(i, states_[i]) == 0) fault = BodyFault::kSpinAliased;
     if (fault != BodyFault::kNone) {
@@ -135,7 +139,10 @@ void World::Step() {
     if (!loaded_[i] && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
       continue;  // at rest and unloaded: nothing can move it, so skip the scheme
     }
-    const std::uint32_t substeps = SubstepsFor(i, state);
+    const std::uint32_t substeps =
+        !loaded_[i] && state.angular_momentum.squaredNorm() <= one_step_momentum_sq_[i]
+            ? 1
+            : SubstepsFor(i, state);
     if (substeps == 0) {
       const BodyFault fault = CheckState(model, state);  // a NaN state set from outside
       Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased);

@@ -112,6 +112,9 @@ class World {
   std::vector<HeldLoads> loads_;
   std::vector<char> loaded_;
   std::vector<BodyFault> faults_;
+  // Per body, the |L|² below which a free body needs no substep (the cheap
+  // bound of SubstepsFor, squared), so the common case costs one compare.
+  std::vector<double> one_step_momentum_sq_;
   // Free bodies (full rank, moving, no load) of this step, stepped in
   // batches through Integrator::StepFree, and their poses before it (a free
   // step changes nothing else).
