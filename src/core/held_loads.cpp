@@ -65,9 +65,11 @@ double HeldLoads::DroppedTorque(const Eigen::Matrix3d& rotation) const {
 
 double HeldLoads::TorqueBound() const {
   if (!has_torque_) return 0.0;
-  // |vee(C Aᵀ − A Cᵀ)| <= 2 ‖C‖ (Frobenius bounds the spectral norm).
+  // |vee(C Aᵀ − A Cᵀ)| <= 2 ‖C‖₂, and sums of magnitudes bound the 2-norms
+  // without a square root.
   if (torque_bound_ < 0.0) {
-    torque_bound_ = torque_world_.norm() + torque_body_.norm() + 2.0 * force_moment_.norm();
+    torque_bound_ = torque_world_.lpNorm<1>() + torque_body_.lpNorm<1>() +
+                    2.0 * force_moment_.cwiseAbs().sum();
   }
   return torque_bound_;
 }

@@ -139,10 +139,11 @@ void World::Step() {
     if (!loaded_[i] && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
       continue;  // at rest and unloaded: nothing can move it, so skip the scheme
     }
-    const std::uint32_t substeps =
-        !loaded_[i] && state.angular_momentum.squaredNorm() <= one_step_momentum_sq_[i]
-            ? 1
-            : SubstepsFor(i, state);
+    // The cheap bound of SubstepsFor first, squared: (|L| + dt τ)² <= 2|L|² + 2(dt τ)².
+    const double kick = loaded_[i] ? options_.dt_s * loads_[i].TorqueBound() : 0.0;
+    const double reach_sq = loaded_[i] ? 2.0 * (state.angular_momentum.squaredNorm() + kick * kick)
+                                       : state.angular_momentum.squaredNorm();
+    const std::uint32_t substeps = reach_sq <= one_step_momentum_sq_[i] ? 1 : SubstepsFor(i, state);
     if (substeps == 0) {
       const BodyFault fault = CheckState(model, state);  // a NaN state set from outside
       Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased);

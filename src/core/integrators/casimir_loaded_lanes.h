@@ -23,8 +23,10 @@ inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, cons
                             double dt_s) {
   constexpr double kMaxTurn = 1.0 / 16;
   constexpr double kLongestSubstep = 1.36;
-  const double reach = state.angular_momentum.norm() + dt_s * loads.TorqueBound();
-  return kLongestSubstep * dt_s * model.inverse_principal_moments().maxCoeff() * reach <= kMaxTurn;
+  const double turn = kLongestSubstep * dt_s * model.inverse_principal_moments().maxCoeff();
+  const double kick = dt_s * loads.TorqueBound();
+  // Squared, to spare the root: (|L| + kick)² <= 2 |L|² + 2 kick².
+  return turn * turn * 2.0 * (state.angular_momentum.squaredNorm() + kick * kick) <= kMaxTurn * kMaxTurn;
 }
 
 struct LoadedLanes {
