@@ -46,6 +46,13 @@ World MakeWorld(const std::string& integrator, int bodies, bool forced,
   return world;
 }
 
+// Seconds per body-step, the counter every World::Step benchmark reports.
+void ReportPerBodyStep(int bodies, benchmark::State* state) {
+  state->counters["per_body_step"] = benchmark::Counter(
+      static_cast<double>(state->iterations()) * bodies,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+
 void BM_WorldStep(benchmark::State& state, const std::string& integrator, bool forced) {
   const int bodies = static_cast<int>(state.range(0));
   World world = MakeWorld(integrator, bodies, forced);
@@ -53,9 +60,7 @@ void BM_WorldStep(benchmark::State& state, const std::string& integrator, bool f
     world.Step();
     benchmark::ClobberMemory();
   }
-  state.counters["per_body_step"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * bodies,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  ReportPerBodyStep(bodies, &state);
 }
 
 // The skips decided per body each step, against the tumbling box of
@@ -66,9 +71,7 @@ void BM_WorldStepAtRest(benchmark::State& state) {
   const int bodies = static_cast<int>(state.range(0));
   World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kAtRest);
   for (auto _ : state) world.Step();
-  state.counters["per_body_step"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * bodies,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  ReportPerBodyStep(bodies, &state);
 }
 BENCHMARK(BM_WorldStepAtRest)->Arg(1000);
 
@@ -76,9 +79,7 @@ void BM_WorldStepCubes(benchmark::State& state) {
   const int bodies = static_cast<int>(state.range(0));
   World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, true);
   for (auto _ : state) world.Step();
-  state.counters["per_body_step"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * bodies,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  ReportPerBodyStep(bodies, &state);
 }
 BENCHMARK(BM_WorldStepCubes)->Arg(1000);
 
@@ -129,9 +130,7 @@ void BM_WorldStepLoaded(benchmark::State& state, LoadKind kind) {
     world.Step();
     benchmark::ClobberMemory();
   }
-  state.counters["per_body_step"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * bodies,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  ReportPerBodyStep(bodies, &state);
 }
 BENCHMARK_CAPTURE(BM_WorldStepLoaded, world_force, LoadKind::kWorldForce)->Arg(1000);
 BENCHMARK_CAPTURE(BM_WorldStepLoaded, body_force, LoadKind::kBodyForce)->Arg(1000);
