@@ -2,7 +2,12 @@
 // configuration found at build time, on the scenes of scene.cpp, for each dt.
 // Writes one CSV row per (scene, method, dt); plot_work_precision.py draws it.
 //
-// usage: work_precision [output.csv] [--quick]
+// usage: work_precision [output.csv] [--quick] [--ours] [--scenes a,b] [--methods a,b]
+//                       [--dts 0.1,0.01]
+//   --quick    dt ∈ {1e-2, 1e-3} only (a smoke run)
+//   --ours     our integrators only, no peer engine
+//   --scenes   only the named scenes; --methods only the named integrators
+//   --dts      these dt instead of the full set
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -227,6 +232,22 @@ void WriteRow(std::ofstream& csv, const Scene& scene, const std::string& engine,
   std::cout << line << std::flush;
 }
 
+// "a,b,c" → {"a", "b", "c"}.
+std::vector<std::string> SplitList(const std::string& list) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    if (comma > start) items.push_back(list.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return items;
+}
+
+bool Selected(const std::vector<std::string>& selection, const std::string& name) {
+  return selection.empty() || std::find(selection.begin(), selection.end(), name) != selection.end();
+}
+
 }  // namespace
 }  // namespace rigid_body_sim::bench
 
@@ -234,16 +255,27 @@ int main(int argc, char** argv) {
   using namespace rigid_body_sim::core;
   using namespace rigid_body_sim::bench;
   std::string output = "bench/results/work_precision.csv";
-  bool quick = false;
+  bool quick = false, ours_only = false;
+  std::vector<std::string> scene_names, method_names, dt_texts;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
     if (arg == "--quick") quick = true;
+    else if (arg == "--ours") ours_only = true;
+    else if (arg == "--scenes" && has_value) scene_names = SplitList(argv[++i]);
+    else if (arg == "--methods" && has_value) method_names = SplitList(argv[++i]);
+    else if (arg == "--dts" && has_value) dt_texts = SplitList(argv[++i]);
     else output = arg;
   }
-  const std::vector<double> dts = quick ? std::vector<double>{1e-2, 1e-3}
-                                        : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5};
+  std::vector<double> dts = quick ? std::vector<double>{1e-2, 1e-3}
+                                  : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5};
+  if (!dt_texts.empty()) {
+    dts.clear();
+    for (const std::string& text : dt_texts) dts.push_back(std::stod(text));
+  }
   std::vector<std::string> missing;
-  std::vector<std::unique_ptr<Peer>> peers = MakePeers(&missing);
+  std::vector<std::unique_ptr<Peer>> peers;
+  if (!ours_only) peers = MakePeers(&missing);
   for (const std::string& name : missing) std::cerr << "work_precision: skipping " << name << "\n";
 
   std::ofstream csv(output);
@@ -254,6 +286,7 @@ int main(int argc, char** argv) {
   csv << "scene,engine,method,dt_s,orientation_error_rad,position_error_m,energy_rel_error,"
          "momentum_rel_error,ns_per_body_step,flips,first_flip_error_s\n";
   for (const Scene& scene : WorkPrecisionScenes()) {
+    if (!Selected(scene_names, scene.name)) continue;
     const BodyModel model(scene.name, scene.particles);
     const Reference reference = MakeReference(scene, model, dts);
     std::cerr << scene.name << ": reference error estimate " << reference.own_error_rad << " rad\n";
@@ -263,6 +296,7 @@ int main(int argc, char** argv) {
       const BodyState& expected = reference.at_end[d];
       const long timed_steps = std::min<long>(100, StepCount(scene, dt));
       for (const std::string& name : IntegratorNames()) {
+        if (!Selected(method_names, name)) continue;
         FlipCounter flips;
         const BodyState final_state = RunOurs(scene, model, name, dt, track_flips ? &flips : nullptr);
         const double ns = TimeOurs(scene, model, name, dt, timed_steps);
