@@ -172,7 +172,7 @@ TEST(Degenerate, DroppedCoupleCountedOnDiagnostics) {
   ASSERT_TRUE(sim.EnsureConnected());
   ros::NodeHandle nh;
   DiagnosticsRecorder diag;
-  diag.Start(nh);
+  diag.Start(nh, sim.ns());  // the point_mass_* nodes publish diagnostics too
   ASSERT_TRUE(sim.PauseAndReset());
   sim.Publish(MakeWrench("rod2", 0, 0, 0, 0, 1.0, 0, 0, "rod2"));
   rigid_body_sim::BodyStateArray s;

@@ -156,17 +156,22 @@ class BodiesRecorder {
   std::vector<rigid_body_sim::BodyStateArray> msgs_;
 };
 
-// Latest value of every diagnostics key (all statuses merged: only the node
-// under test publishes /diagnostics in these launch files).
+// Latest value of every diagnostics key, the statuses merged. With `node`
+// (e.g. "/rigid_body_sim") only that node's statuses count, named
+// "rigid_body_sim: ..." by diagnostic_updater: a launch file with several
+// nodes (degenerate.test) has them all on /diagnostics.
 class DiagnosticsRecorder {
  public:
-  void Start(ros::NodeHandle& nh) {
+  void Start(ros::NodeHandle& nh, const std::string& node = "") {
+    prefix_ = node.empty() ? "" : (node[0] == '/' ? node.substr(1) : node) + ":";
     sub_ = nh.subscribe("/diagnostics", 100, &DiagnosticsRecorder::Cb, this);
   }
   void Cb(const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
     std::lock_guard<std::mutex> l(mu_);
-    for (const auto& s : m->status)
+    for (const auto& s : m->status) {
+      if (s.name.compare(0, prefix_.size(), prefix_) != 0) continue;
       for (const auto& kv : s.values) values_[kv.key] = kv.value;
+    }
     ++count_;
   }
   std::size_t Count() const {
@@ -203,6 +208,7 @@ class DiagnosticsRecorder {
   }
 
  private:
+  std::string prefix_;  // "" or "<node>:"
   ros::Subscriber sub_;
   mutable std::mutex mu_;
   std::map<std::string, std::string> values_;
