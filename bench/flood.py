@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Flood test (reliability issue, item 3): the node on the default scene at
+"""Flood test: the node on the default scene at
 rate 1000 takes ARRAYS wrenches/s in ParticleWrenchArray messages and
 SINGLES/s single ParticleWrench messages from another process (bench's
 wrench_flood) for DURATION s. Reports the rate held (overruns and achieved
@@ -7,75 +7,56 @@ real-time factor from /diagnostics), the node's memory over time, and checks
 that each particle holds the last wrench sent to it.
 
 usage: flood.py [--workspace WS] [--arrays 100000] [--singles 20000] [--duration 30]
+
+The script runs itself again in the workspace's environment (devel/setup.bash
+sourced, bench/node_harness.py); roslaunch starts the master on --port.
 """
 import argparse
 import os
-import signal
 import subprocess
 import sys
 import time
-import xmlrpc.client
+
+from node_harness import (REPO, Diagnostics, add_workspace_argument, devel_program, launch_default_scene,
+                          node_pid, reexec_in_workspace, rss_kib, stop_launch, wait_for_scene)
 
 parser = argparse.ArgumentParser()
-repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-parser.add_argument("--workspace", default=os.path.join(repo, ".build_ws"))
+add_workspace_argument(parser)
 parser.add_argument("--arrays", type=float, default=100000, help="wrenches/s sent in arrays")
 parser.add_argument("--entries", type=int, default=100, help="entries per array")
 parser.add_argument("--singles", type=float, default=20000, help="single messages/s")
 parser.add_argument("--duration", type=float, default=30.0)
 parser.add_argument("--port", type=int, default=11421)
-parser.add_argument("--out", default=os.path.join(repo, "bench", "results", "flood.md"))
+parser.add_argument("--out", default=os.path.join(REPO, "bench", "results", "flood.md"))
 args = parser.parse_args()
+workspace = reexec_in_workspace(args.workspace, args.port)
 
-os.environ["ROS_MASTER_URI"] = "http://localhost:%d" % args.port
-import rosgraph  # noqa: E402
-import rospy  # noqa: E402  (after ROS_MASTER_URI is set)
-from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
+import rospy  # noqa: E402  (in the workspace's environment)
 from rigid_body_sim.msg import BodyStateArray  # noqa: E402
 from rigid_body_sim.srv import Step  # noqa: E402
 from std_srvs.srv import SetBool  # noqa: E402
-from visualization_msgs.msg import MarkerArray  # noqa: E402
 
-devel = os.path.join(args.workspace, "devel", "lib", "rigid_body_sim")
-launch = subprocess.Popen(["roslaunch", "-p", str(args.port), "rigid_body_sim", "rigid_body_sim.launch"],
-                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
-
-
-def shutdown():
-    os.killpg(launch.pid, signal.SIGINT)
-    launch.wait(timeout=20)
-
-
+wrench_flood = devel_program(workspace, "wrench_flood")
+launch = launch_default_scene(args.port)
 try:
     rospy.init_node("flood_driver", anonymous=True)
-    latest = {}
-    rospy.Subscriber("/diagnostics", DiagnosticArray,
-                     lambda m: latest.update({kv.key: kv.value for s in m.status
-                                              if s.name.endswith("simulation") for kv in s.values}))
-    markers = rospy.wait_for_message("/rigid_body_sim/particles", MarkerArray, timeout=30)
-    bodies = rospy.wait_for_message("/rigid_body_sim/bodies", BodyStateArray, timeout=10)
-    names = [b.name for b in bodies.bodies]
-    counts = {names[m.id]: len(m.points) for m in markers.markers}
-    # This launch's node, not any other rigid_body_sim_node on the machine.
-    node_api = rosgraph.Master(rospy.get_name()).lookupNode("/rigid_body_sim")
-    pid = xmlrpc.client.ServerProxy(node_api).getPid(rospy.get_name())[2]
-
-    def rss_kib():
-        with open("/proc/%d/status" % pid) as status:
-            return next(int(line.split()[1]) for line in status if line.startswith("VmRSS"))
+    diagnostics = Diagnostics()
+    latest = diagnostics.latest  # the node's newest "simulation" status
+    names, counts = wait_for_scene()
+    pid = node_pid()
 
     while "overruns" not in latest:
         time.sleep(0.2)
     overruns_before = int(latest["overruns"])
     rate_per_array = args.arrays / args.entries
-    flood = subprocess.Popen([os.path.join(devel, "wrench_flood"), "top", str(counts["top"]),
+    flood = subprocess.Popen([wrench_flood, "top", str(counts["top"]),
                               str(rate_per_array), str(args.entries), "box", str(counts["box"]),
                               str(args.singles), str(args.duration)],
                              stdout=subprocess.PIPE, text=True)
     rss, factors = [], []
     while flood.poll() is None:
         time.sleep(1.0)
-        rss.append(rss_kib())
+        rss.append(rss_kib(pid))
         factors.append(float(latest.get("real_time_factor_achieved", "nan")))
     report = flood.stdout.read().splitlines()
     sent_line = report[0]
@@ -132,4 +113,4 @@ try:
     open(args.out, "w").write(text)
     sys.exit(0 if all(c[3] for c in checks) else 1)
 finally:
-    shutdown()
+    stop_launch(launch)

@@ -33,8 +33,6 @@ import io
 import math
 import os
 import random
-import shlex
-import signal
 import statistics
 import subprocess
 import sys
@@ -42,10 +40,8 @@ import tempfile
 import threading
 import time
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-ENV_MARK = "RBS_NODE_LOAD_WS"
-NODE_NAME = "rigid_body_sim"
-NS = "/" + NODE_NAME
+from node_harness import (NODE_NAME, NS, REPO, CpuWindow, Diagnostics, Processes, add_workspace_argument,
+                          devel_program, reexec_in_workspace, start_master)
 
 
 def parse_args():
@@ -53,8 +49,7 @@ def parse_args():
     parser.add_argument("--quick", action="store_true", help="smaller scan, under a minute")
     parser.add_argument("--sizes", type=int, nargs="+", default=None,
                         help="body counts the capacity part scans (default 1 1000 10000)")
-    parser.add_argument("--workspace", default=os.path.join(REPO, ".build_ws"),
-                        help="catkin workspace whose devel/setup.bash is sourced (default: .build_ws in the repo)")
+    add_workspace_argument(parser)
     parser.add_argument("--port", type=int, default=11395, help="port of the private ROS master")
     parser.add_argument("--node-cpu", type=int, default=1, help="core the node is pinned to (taskset -c)")
     parser.add_argument("--bench-cpu", type=int, default=0, help="core of this script and the master")
@@ -67,31 +62,8 @@ def parse_args():
     return parser.parse_args()
 
 
-def reexec_in_workspace(args):
-    """Runs this script again with the workspace's environment and a private master."""
-    ws = os.path.abspath(args.workspace)
-    if os.environ.get(ENV_MARK) == ws:
-        return
-    setup = os.path.join(ws, "devel", "setup.bash")
-    if not os.path.exists(setup):
-        sys.exit("no %s: build first, e.g. RBS_WS=%s bash scripts/build.sh" % (setup, ws))
-    env = dict(os.environ)
-    env[ENV_MARK] = ws
-    env["PATH"] = "/usr/bin:" + env.get("PATH", "")
-    env["ROS_MASTER_URI"] = "http://127.0.0.1:%d" % args.port
-    env["ROS_IP"] = "127.0.0.1"
-    env.pop("ROS_HOSTNAME", None)
-    ros_home = tempfile.mkdtemp(prefix="node_load_ros_")
-    env["ROS_HOME"] = ros_home
-    env["ROS_LOG_DIR"] = os.path.join(ros_home, "log")
-    command = "source %s && exec /usr/bin/python3 %s %s" % (
-        shlex.quote(setup), shlex.quote(os.path.abspath(__file__)),
-        " ".join(shlex.quote(a) for a in sys.argv[1:]))
-    os.execve("/bin/bash", ["/bin/bash", "-c", command], env)
-
-
 ARGS = parse_args()
-reexec_in_workspace(ARGS)
+WS = reexec_in_workspace(ARGS.workspace, ARGS.port)
 
 # From here on: the workspace's environment, ROS's Python.
 os.sched_setaffinity(0, {ARGS.bench_cpu})  # threads started later inherit it
@@ -104,13 +76,9 @@ if ARGS.sched != "normal":
         sys.exit("--sched %s needs root (or CAP_SYS_NICE); use --sched normal" % ARGS.sched)
 NODE_PREFIX = {"normal": [], "nice": ["nice", "-n", "-20"], "fifo": ["chrt", "-f", "10"]}[ARGS.sched]
 
-import rosgraph  # noqa: E402
 import rospy  # noqa: E402
-from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
 from rigid_body_sim.msg import BodyStateArray, ParticleWrench, ParticleWrenchArray  # noqa: E402
-from std_srvs.srv import Empty  # noqa: E402
 
-CLK_TCK = os.sysconf("SC_CLK_TCK")
 T_START = time.monotonic()
 
 
@@ -118,148 +86,8 @@ def log(text):
     print("[%6.1f s] %s" % (time.monotonic() - T_START, text), flush=True)
 
 
-# ---------------------------------------------------------------- processes
-
-class Processes:
-    """Children started here, each in its own session; all stopped at exit."""
-
-    def __init__(self):
-        self.children = []
-
-    def start(self, argv, logfile):
-        out = open(logfile, "w")
-        proc = subprocess.Popen(argv, stdout=out, stderr=subprocess.STDOUT, stdin=subprocess.DEVNULL,
-                                start_new_session=True)
-        out.close()
-        self.children.append(proc)
-        return proc
-
-    def stop(self, proc, grace_s=5.0):
-        if proc.poll() is None:
-            try:
-                os.killpg(proc.pid, signal.SIGINT)
-            except ProcessLookupError:
-                pass
-            try:
-                proc.wait(grace_s)
-            except subprocess.TimeoutExpired:
-                try:
-                    os.killpg(proc.pid, signal.SIGKILL)
-                except ProcessLookupError:
-                    pass
-                proc.wait()
-        if proc in self.children:
-            self.children.remove(proc)
-
-    def stop_all(self):
-        for proc in list(reversed(self.children)):
-            self.stop(proc, grace_s=3.0)
-
-
 PROCS = Processes()
 LOG_DIR = tempfile.mkdtemp(prefix="node_load_logs_")
-
-
-def start_master():
-    if rosgraph.is_master_online():
-        sys.exit("a master already answers on %s: pick another --port" % os.environ["ROS_MASTER_URI"])
-    master = PROCS.start(["taskset", "-c", str(ARGS.bench_cpu), "rosmaster", "--core", "-p", str(ARGS.port)],
-                         os.path.join(LOG_DIR, "master.log"))
-    deadline = time.monotonic() + 20
-    while not rosgraph.is_master_online():
-        if master.poll() is not None or time.monotonic() > deadline:
-            sys.exit("the master did not start (log: %s)" % LOG_DIR)
-        time.sleep(0.1)
-    return master
-
-
-def node_executable():
-    ws = os.environ[ENV_MARK]
-    path = os.path.join(ws, "devel", "lib", "rigid_body_sim", "rigid_body_sim_node")
-    if not os.access(path, os.X_OK):
-        sys.exit("no node executable at %s" % path)
-    return path
-
-
-# ------------------------------------------------------------------ /proc
-
-def proc_cpu_ticks(pid):
-    with open("/proc/%d/stat" % pid) as f:
-        fields = f.read().rsplit(")", 1)[1].split()
-    return int(fields[11]) + int(fields[12])  # utime + stime (fields 14, 15)
-
-
-def core_busy_ticks(cpu):
-    with open("/proc/stat") as f:
-        for line in f:
-            if line.startswith("cpu%d " % cpu):
-                v = [int(x) for x in line.split()[1:]]
-                idle = v[3] + v[4]
-                return sum(v[:8]) - idle
-    return 0
-
-
-class CpuWindow:
-    def __init__(self, pid, cpu):
-        self.pid, self.cpu = pid, cpu
-        self.t0 = time.monotonic()
-        self.node0 = proc_cpu_ticks(pid)
-        self.core0 = core_busy_ticks(cpu)
-
-    def finish(self):
-        wall = time.monotonic() - self.t0
-        node = (proc_cpu_ticks(self.pid) - self.node0) / CLK_TCK
-        core = (core_busy_ticks(self.cpu) - self.core0) / CLK_TCK
-        return {"cpu_percent": 100.0 * node / wall,
-                "core_other_percent": max(0.0, 100.0 * (core - node) / wall)}
-
-
-# ------------------------------------------------------------- diagnostics
-
-class Diagnostics:
-    """The node's status "<node>: simulation" as received, scalar keys only."""
-
-    def __init__(self):
-        self.cond = threading.Condition()
-        self.reports = []  # (wall receive time, dict)
-        rospy.Subscriber("/diagnostics", DiagnosticArray, self._on_msg, queue_size=20)
-
-    def _on_msg(self, msg):
-        now = time.monotonic()
-        for status in msg.status:
-            if not status.name.endswith(": simulation") or NODE_NAME not in status.name:
-                continue
-            values = {"level": status.level, "message": status.message}
-            for kv in status.values:
-                if "/" in kv.key:
-                    continue  # per-body keys
-                try:
-                    values[kv.key] = float(kv.value)
-                except ValueError:
-                    values[kv.key] = kv.value
-            with self.cond:
-                self.reports.append((now, values))
-                self.cond.notify_all()
-
-    def clear(self):
-        with self.cond:
-            self.reports = []
-
-    def wait_next(self, timeout, alive=lambda: True):
-        """Waits for a report newer than the latest one seen; returns it or None."""
-        deadline = time.monotonic() + timeout
-        with self.cond:
-            count = len(self.reports)
-            while len(self.reports) == count:
-                remaining = deadline - time.monotonic()
-                if remaining <= 0 or not alive():
-                    return None
-                self.cond.wait(min(remaining, 0.5))
-            return self.reports[-1]
-
-    def since(self, t0, t1):
-        with self.cond:
-            return [r for r in self.reports if t0 < r[0] <= t1]
 
 
 # ------------------------------------------------------------------- scenes
@@ -302,7 +130,7 @@ class NodeRun:
         self.diag.clear()
         t0 = time.monotonic()
         logfile = os.path.join(LOG_DIR, "node_%s.log" % self.label)
-        self.proc = PROCS.start(NODE_PREFIX + ["taskset", "-c", str(ARGS.node_cpu), node_executable(),
+        self.proc = PROCS.start(NODE_PREFIX + ["taskset", "-c", str(ARGS.node_cpu), devel_program(WS, "rigid_body_sim_node"),
                                                "__name:=" + NODE_NAME],
                                 logfile)
         n = len(self.scene["bodies"])
@@ -408,7 +236,7 @@ NOISE_OVERRUNS_PER_S = 1.0  # above what this (virtual, shared) machine gives a 
 def machine_floor(window_s, busy_us):
     """Overruns of a bare 1 kHz loop (bench/wake_jitter) on the node's core, with the node's
     scheduling and step time: what this machine alone gives."""
-    probe = os.path.join(os.environ[ENV_MARK], "devel", "lib", "rigid_body_sim", "wake_jitter")
+    probe = devel_program(WS, "wake_jitter")
     out = subprocess.run(NODE_PREFIX + ["taskset", "-c", str(ARGS.node_cpu), probe, "%.1f" % window_s,
                                         str(int(round(busy_us)))],
                          stdout=subprocess.PIPE, universal_newlines=True, check=True).stdout
@@ -892,8 +720,8 @@ def main():
     quick = ARGS.quick
     start = time.monotonic()
     log("workspace %s, master %s, node on core %d, logs in %s"
-        % (os.environ[ENV_MARK], os.environ["ROS_MASTER_URI"], ARGS.node_cpu, LOG_DIR))
-    start_master()
+        % (WS, os.environ["ROS_MASTER_URI"], ARGS.node_cpu, LOG_DIR))
+    start_master(PROCS, ARGS.port, ARGS.bench_cpu, LOG_DIR)
     rospy.init_node("node_load_bench", anonymous=True, disable_signals=True)
     diag = Diagnostics()
     capacity, cpu_rows, intake_rows, latency_rows = (None, None, None), [], [], []

@@ -1,5 +1,5 @@
 #!/usr/bin/python3
-"""Soak test (reliability issue, item 4): the node on the default scene at
+"""Soak test: the node on the default scene at
 rate 1000 for DURATION s (default 1 h) under random wrenches, valid and
 invalid (NaN, infinite, unknown body, particle out of range, unknown frame),
 on every body but `t_handle`, which stays torque-free so its |L| and energy
@@ -9,41 +9,37 @@ Fails if the node dies, if RSS grows by more than 1 MiB after the first
 minute, or if a published quaternion is off unit length by more than 1e-12.
 
 usage: soak.py [--workspace WS] [--duration 3600] [--rate 200]
+
+The script runs itself again in the workspace's environment (devel/setup.bash
+sourced, bench/node_harness.py); roslaunch starts the master on --port.
 """
 import argparse
 import math
 import os
 import random
-import signal
-import subprocess
 import sys
 import time
-import xmlrpc.client
+
+from node_harness import (REPO, Diagnostics, add_workspace_argument, launch_default_scene, node_pid,
+                          reexec_in_workspace, rss_kib, stop_launch, wait_for_scene)
 
 parser = argparse.ArgumentParser()
-repo = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-parser.add_argument("--workspace", default=os.path.join(repo, ".build_ws"))
+add_workspace_argument(parser)
 parser.add_argument("--duration", type=float, default=3600.0)
 parser.add_argument("--rate", type=float, default=200.0, help="wrench messages per second")
 parser.add_argument("--port", type=int, default=11431)
-parser.add_argument("--out", default=os.path.join(repo, "bench", "results", "soak.md"))
+parser.add_argument("--out", default=os.path.join(REPO, "bench", "results", "soak.md"))
 args = parser.parse_args()
+reexec_in_workspace(args.workspace, args.port)
 
-os.environ["ROS_MASTER_URI"] = "http://localhost:%d" % args.port
-import rosgraph  # noqa: E402
-import rospy  # noqa: E402
-from diagnostic_msgs.msg import DiagnosticArray  # noqa: E402
+import rospy  # noqa: E402  (in the workspace's environment)
 from rigid_body_sim.msg import BodyStateArray, ParticleWrench  # noqa: E402
-from visualization_msgs.msg import MarkerArray  # noqa: E402
 
-launch = subprocess.Popen(["roslaunch", "-p", str(args.port), "rigid_body_sim", "rigid_body_sim.launch"],
-                          stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+launch = launch_default_scene(args.port)
 try:
     rospy.init_node("soak_driver", anonymous=True)
-    latest = {}
-    rospy.Subscriber("/diagnostics", DiagnosticArray,
-                     lambda m: latest.update({kv.key: kv.value for s in m.status
-                                              if s.name.endswith("simulation") for kv in s.values}))
+    diagnostics = Diagnostics()
+    latest = diagnostics.latest  # the node's newest "simulation" status
     worst_norm = [0.0]
 
     def on_bodies(message):
@@ -51,13 +47,9 @@ try:
             q = body.pose.orientation
             worst_norm[0] = max(worst_norm[0], abs(math.sqrt(q.x**2 + q.y**2 + q.z**2 + q.w**2) - 1.0))
     rospy.Subscriber("/rigid_body_sim/bodies", BodyStateArray, on_bodies)
-    markers = rospy.wait_for_message("/rigid_body_sim/particles", MarkerArray, timeout=30)
-    names = [b.name for b in rospy.wait_for_message("/rigid_body_sim/bodies", BodyStateArray, timeout=10).bodies]
-    counts = {names[m.id]: len(m.points) for m in markers.markers}
+    names, counts = wait_for_scene()
     pushed = [n for n in names if n != "t_handle"]
-    # This launch's node, not any other rigid_body_sim_node on the machine.
-    node_api = rosgraph.Master(rospy.get_name()).lookupNode("/rigid_body_sim")
-    pid = xmlrpc.client.ServerProxy(node_api).getPid(rospy.get_name())[2]
+    pid = node_pid()
     publisher = rospy.Publisher("/rigid_body_sim/particle_wrench", ParticleWrench, queue_size=1000)
     rng = random.Random(20261122)
 
@@ -83,10 +75,6 @@ try:
             f.x = f.y = f.z = 0.0  # release: keeps the bodies from spinning up forever
         return message
 
-    def rss_kib():
-        with open("/proc/%d/status" % pid) as status:
-            return next(int(line.split()[1]) for line in status if line.startswith("VmRSS"))
-
     start = time.time()
     next_report = start + 60.0
     rows = []
@@ -101,7 +89,7 @@ try:
         time.sleep(period)
         if time.time() >= next_report:
             next_report += 60.0
-            rows.append((time.time() - start, rss_kib(), latest.get("overruns", "?"),
+            rows.append((time.time() - start, rss_kib(pid), latest.get("overruns", "?"),
                          latest.get("rejected_messages", "?"),
                          latest.get("t_handle/angular_momentum_drift", "?"),
                          latest.get("t_handle/rotational_energy_drift", "?"), worst_norm[0]))
@@ -120,5 +108,4 @@ try:
     open(args.out, "w").write(text)
     sys.exit(0 if growth <= 1024 and worst_norm[0] <= 1e-12 else 1)
 finally:
-    os.killpg(launch.pid, signal.SIGINT)
-    launch.wait(timeout=20)
+    stop_launch(launch)

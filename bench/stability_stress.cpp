@@ -35,7 +35,8 @@
 //     random particle, world or body axes, |F| <= 100 N, |couple| <= 10 N m,
 //     redrawn every 100 steps, gravity on), three seeds: every state finite,
 //     and which bodies the World froze, why and when (a thin body spun up
-//     about its thin axis past |ω|h = π is frozen as spin_aliased).
+//     about its thin axis beyond what max_substeps substeps resolve is
+//     frozen as spin_aliased).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -394,11 +395,13 @@ World RandomWorld(const std::string& name) {
   return World(std::move(models), std::move(states), options);
 }
 
-// The World freezes a body whose state breaks a CheckState bound (non-finite,
-// faster than light, |ω|h >= π) and keeps its last good state, so "finite"
-// is checked on the World's states and the freezes are reported with their
-// cause: kSpinAliased is the legitimate end of a thin body spun up by couples
-// about its thin axis; kNonFinite would mean an integrator produced a NaN.
+// The World substeps a body whose step leaves the scheme's accurate range and
+// freezes one whose state breaks a CheckState bound (non-finite, faster than
+// light) or that needs more than max_substeps, keeping its last good state,
+// so "finite" is checked on the World's states and the freezes are reported
+// with their cause: kSpinAliased is the end of a thin body spun up by couples
+// about its thin axis under a scheme that follows the raw spin; kNonFinite
+// would mean an integrator produced a NaN.
 RandomRun RunRandom(const std::string& name, long steps, std::uint64_t seed) {
   World world = RandomWorld(name);
   std::mt19937_64 rng(seed);

@@ -99,6 +99,83 @@ void BM_ParticlePositions(benchmark::State& state) {
 }
 BENCHMARK(BM_ParticlePositions)->Arg(1000);
 
+// One kind of load on each of 1,000 tumbling boxes, default scheme: a held
+// particle force in world axes, one in body axes, gravity alone.
+enum class LoadKind { kWorldForce, kBodyForce, kGravity };
+
+void BM_WorldStepLoaded(benchmark::State& state, LoadKind kind) {
+  const int bodies = static_cast<int>(state.range(0));
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states(bodies);
+  for (int i = 0; i < bodies; ++i) {
+    models.emplace_back("body" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2));
+    states[i].position = {0.01 * i, 0.0, 0.0};
+    states[i].angular_momentum = {0.001, 0.02, 0.001};
+  }
+  WorldOptions options;
+  if (kind == LoadKind::kGravity) options.gravity = {0.0, 0.0, -9.81};
+  World world(std::move(models), std::move(states), options);
+  if (kind != LoadKind::kGravity) {
+    for (int i = 0; i < bodies; ++i) {
+      ParticleWrench push;
+      push.body = i;
+      push.particle = i % 8;
+      push.force = {0.1, -0.2, 0.05};
+      push.axes = kind == LoadKind::kBodyForce ? WrenchAxes::kBody : WrenchAxes::kWorld;
+      world.HoldWrench(push);
+    }
+  }
+  for (auto _ : state) {
+    world.Step();
+    benchmark::ClobberMemory();
+  }
+  state.counters["per_body_step"] = benchmark::Counter(
+      static_cast<double>(state.iterations()) * bodies,
+      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+}
+BENCHMARK_CAPTURE(BM_WorldStepLoaded, world_force, LoadKind::kWorldForce)->Arg(1000);
+BENCHMARK_CAPTURE(BM_WorldStepLoaded, body_force, LoadKind::kBodyForce)->Arg(1000);
+BENCHMARK_CAPTURE(BM_WorldStepLoaded, gravity, LoadKind::kGravity)->Arg(1000);
+
+// The worst step the default ~max_substeps allows at 10,000 bodies: 10,000
+// tumbling boxes and one more, pushed in body axes, spinning so fast that it
+// takes (nearly) max_substeps substeps. Time per World::Step.
+void BM_WorstStepAtMaxSubsteps(benchmark::State& state) {
+  const int bodies = static_cast<int>(state.range(0));
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states(bodies + 1);
+  for (int i = 0; i <= bodies; ++i) {
+    models.emplace_back("body" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2));
+    states[i].position = {0.01 * i, 0.0, 0.0};
+    states[i].angular_momentum = {0.001, 0.02, 0.001};
+  }
+  World world(models, states, WorldOptions{});
+  ParticleWrench push;
+  push.body = bodies;
+  push.force = {0.1, -0.2, 0.05};
+  push.axes = WrenchAxes::kBody;
+  world.HoldWrench(push);
+  world.Step();  // SubstepsFor sees the load from here on
+  // Scale the spin until the body needs between 90 % and 100 % of the cap.
+  const std::uint32_t cap = world.options().max_substeps;
+  BodyState fast = states[bodies];
+  double low = 0.0, high = 1e6;
+  for (int k = 0; k < 100; ++k) {
+    fast.angular_momentum = Eigen::Vector3d(0.3, 1.0, 0.2).normalized() * (0.5 * (low + high));
+    const std::uint32_t n = world.SubstepsFor(bodies, fast);
+    if (n >= 0.9 * cap && n > 0) break;
+    (n == 0 ? high : low) = 0.5 * (low + high);
+  }
+  world.SetBodyState(bodies, fast);
+  std::uint32_t substeps = 0;
+  for (auto _ : state) {
+    world.Step();
+    substeps = world.last_step_substeps_max();
+  }
+  state.counters["substeps"] = substeps;
+}
+BENCHMARK(BM_WorstStepAtMaxSubsteps)->Arg(10000)->Unit(benchmark::kMicrosecond);
+
 void RegisterWorldSteps() {
   for (const std::string& name : IntegratorNames()) {
     for (bool forced : {false, true}) {

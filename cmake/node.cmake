@@ -10,7 +10,9 @@ add_library(rigid_body_sim_ros
   src/ros/state_publisher.cpp
   src/ros/node_diagnostics.cpp
   src/ros/simulation_node.cpp)
-target_include_directories(rigid_body_sim_ros PUBLIC include ${catkin_INCLUDE_DIRS})
+# The ROS headers come from include_directories() above here and from
+# catkin_package() for dependent packages: no absolute path in the interface.
+target_include_directories(rigid_body_sim_ros PUBLIC include PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES})
 add_dependencies(rigid_body_sim_ros
   ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
@@ -28,5 +30,3 @@ install(DIRECTORY include/${PROJECT_NAME}/
   DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})
 install(DIRECTORY launch config
   DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
-install(PROGRAMS scripts/run.sh scripts/rviz_screenshot.sh
-  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

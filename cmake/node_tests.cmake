@@ -3,6 +3,9 @@
 #   catkin_make run_tests_rigid_body_sim      (all)
 #   rostest rigid_body_sim <name>.test        (one)
 find_package(rostest REQUIRED)
+# The node publishes /tf without tf2_ros; interface_test reads it back through a
+# tf2_ros::Buffer, so tf2_ros is a test dependency only.
+find_package(tf2_ros REQUIRED)
 
 set(_rbs_node_gtests
   interface
@@ -23,6 +26,10 @@ foreach(_t ${_rbs_node_gtests})
     add_dependencies(${_t}_test rigid_body_sim_node ${${PROJECT_NAME}_EXPORTED_TARGETS})
   endif()
 endforeach()
+if(TARGET interface_test)
+  target_include_directories(interface_test PRIVATE ${tf2_ros_INCLUDE_DIRS})
+  target_link_libraries(interface_test ${tf2_ros_LIBRARIES})
+endif()
 
 # Pure-launch / Python tests: they only need the node built.
 add_rostest(test/ros/hz.test DEPENDENCIES rigid_body_sim_node)

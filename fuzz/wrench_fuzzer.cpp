@@ -324,13 +324,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       twist.angular.x = v[10], twist.angular.y = v[11], twist.angular.z = v[12];
       std::string reason;
       const std::optional<core::BodyState> state =
-          rigid_body_sim::StateFromRequest(world.model(body), pose, twist, world.options().dt_s, &reason);
+          rigid_body_sim::StateFromRequest(world.model(body), pose, twist, &reason);
       if (Verbose()) {
         std::fprintf(stderr, "set_body_state %zu x [%g %g %g] q [%g %g %g %g] v [%g %g %g] w [%g %g %g] %s\n",
                      body, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11],
                      v[12], state ? "(set)" : reason.c_str());
       }
-      if (!state) continue;  // the node refuses it, and says why
+      // The node refuses it, and says why.
+      if (!state || world.SubstepsFor(body, *state) == 0) continue;
       world.SetBodyState(body, *state);
       CheckWorld(world, "SetBodyState");
     }

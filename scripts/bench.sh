@@ -4,8 +4,8 @@
 # with -DRBS_BUILD_BENCH=ON and rewrites bench/results/ (CSVs and plots).
 # Pass --quick for a two-dt smoke run that writes to /tmp instead.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-$repo/.build_ws}"
+# shellcheck source=scripts/common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 quick=""
 repetitions=5
 results="$repo/bench/results"
@@ -18,7 +18,7 @@ fi
 # bench builds without the engines too, and skips their lines.
 bash "$repo/scripts/install_deps.sh" libmujoco-dev libbullet-dev libode-dev pkg-config python3-matplotlib
 # The node, the bench programs and wrench_flood (all of them with the option on).
-bash "$repo/scripts/build.sh" -DRBS_BUILD_BENCH=ON -j2
+bash "$repo/scripts/build.sh" -DRBS_BUILD_BENCH=ON
 bin="$ws/devel/lib/rigid_body_sim"
 mkdir -p "$results"
 cd "$repo"

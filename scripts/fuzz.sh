@@ -15,8 +15,9 @@
 # (default /tmp/ws_fuzz) gets the message targets built if it has none.
 # Objects and binaries go to FUZZ_BUILD (default /tmp/rbs_fuzz_build).
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-/tmp/ws_fuzz}"
+ws_default=/tmp/ws_fuzz
+# shellcheck source=scripts/common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 out="${FUZZ_BUILD:-/tmp/rbs_fuzz_build}"
 fuzz_time="${FUZZ_TIME:-60}"
 max_len="${FUZZ_MAX_LEN:-1024}"

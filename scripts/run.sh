@@ -1,12 +1,13 @@
 #!/bin/bash
-# Builds rigid_body_sim and launches the node on the default scene:
+# Installs what is missing, builds rigid_body_sim and launches the node on the
+# default scene:
 #   bash scripts/run.sh [roslaunch args, e.g. integrator:=rk4 rviz:=true]
 # roslaunch starts its own master when none is running. Without a display the
 # node's status line, once a second, shows that it is alive.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-$repo/.build_ws}"
+# shellcheck source=scripts/common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+bash "$repo/scripts/install_deps.sh"
 bash "$repo/scripts/build.sh"
-export PATH="/usr/bin:$PATH"
-set +u; source "$ws/devel/setup.bash"; set -u
+rbs_source_devel
 exec roslaunch rigid_body_sim rigid_body_sim.launch "$@"

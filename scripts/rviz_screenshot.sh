@@ -5,28 +5,17 @@
 # Runs on its own master port (RBS_SCREENSHOT_PORT, default 11399) so that it
 # leaves any running simulation alone.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-$repo/.build_ws}"
+# shellcheck source=scripts/common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 settle_s="${1:-6}"
 port="${RBS_SCREENSHOT_PORT:-11399}"
 display=":${RBS_SCREENSHOT_DISPLAY:-97}"
 out="$repo/doc/rviz_default_scene.png"
 
-needed=(xvfb rviz imagemagick libgl1-mesa-dri)
-missing=()
-for p in "${needed[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  sudo_cmd=""
-  [ "$(id -u)" -ne 0 ] && sudo_cmd="sudo"
-  $sudo_cmd apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo_cmd apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
-
+# The virtual display, rviz and the screenshot tool on top of the usual packages.
+bash "$repo/scripts/install_deps.sh" xvfb rviz imagemagick libgl1-mesa-dri
 bash "$repo/scripts/build.sh"
-export PATH="/usr/bin:$PATH"
-set +u; source "$ws/devel/setup.bash"; set -u
+rbs_source_devel
 export ROS_MASTER_URI="http://localhost:$port"
 export DISPLAY="$display"
 export LIBGL_ALWAYS_SOFTWARE=1   # Xvfb has no GPU: Mesa's software renderer

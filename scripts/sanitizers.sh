@@ -1,8 +1,10 @@
 #!/bin/bash
 # Builds the whole package (core, node, core gtests and rostests) with
 # AddressSanitizer + UndefinedBehaviorSanitizer (gcc) in a workspace of its own
-# (default /tmp/ws_asan; override with RBS_WS=/path), runs every test and exits
-# non-zero on a test failure or on any sanitizer report from any process.
+# (default /tmp/ws_asan; override with RBS_SANITIZER_WS=/path, not RBS_WS: the
+# sanitizer flags stay in a workspace's CMake cache, so the workspace of
+# scripts/test.sh must never be this one), runs every test and exits non-zero
+# on a test failure or on any sanitizer report from any process.
 #
 #   bash scripts/sanitizers.sh            # build -j2, then all tests
 #   RBS_JOBS=1 bash scripts/sanitizers.sh # build -j1
@@ -14,28 +16,23 @@
 # are searched for "runtime error" / "ERROR: AddressSanitizer" /
 # "ERROR: LeakSanitizer" as well.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-/tmp/ws_asan}"
-jobs="${RBS_JOBS:-2}"
+# shellcheck source=scripts/common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+ws="${RBS_SANITIZER_WS:-/tmp/ws_asan}"
 start=$(date +%s)
 
 bash "$repo/scripts/install_deps.sh"
-mkdir -p "$ws/src"
-[ -e "$ws/src/rigid_body_sim" ] || ln -s "$repo" "$ws/src/rigid_body_sim"
-cd "$ws"
-export PATH="/usr/bin:$PATH"
-
 san="-fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=undefined"
 # RelWithDebInfo (-O2 -g): the timing rostests need a node that keeps up with
 # its rate under ASan; -g gives line numbers in the reports.
-catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+rbs_catkin_make -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_CXX_FLAGS="$san" -DCMAKE_C_FLAGS="$san" \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
   -j"$jobs"
 build_done=$(date +%s)
 
-set +u; source devel/setup.bash; set -u
+rbs_source_devel
 
 logs="$ws/sanitizer_logs"
 rm -rf "$logs" "$ws/ros_home" build/test_results

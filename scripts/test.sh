@@ -2,12 +2,12 @@
 # The one test command: installs what is missing, builds, runs every test
 # (gtest for the core, rostest for the node) and exits non-zero on any failure.
 set -euo pipefail
-repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-ws="${RBS_WS:-$repo/.build_ws}"
-bash "$repo/scripts/build.sh" -j2
-export PATH="/usr/bin:$PATH"
+# shellcheck source=scripts/common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+bash "$repo/scripts/install_deps.sh"
+bash "$repo/scripts/build.sh"
 cd "$ws"
-set +u; source devel/setup.bash; set -u
+rbs_source_devel
 # The run command finds the launch file by package and name: it must resolve,
 # and to exactly one file (a workspace visible inside the checkout once made
 # roslaunch's search loop through the link back to it).

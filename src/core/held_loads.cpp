@@ -1,5 +1,7 @@
 #include "rigid_body_sim/core/held_loads.h"
 
+#include <algorithm>
+
 namespace rigid_body_sim::core {
 namespace {
 
@@ -11,6 +13,7 @@ Eigen::Vector3d VeeOfAntisymmetricPart(const Eigen::Matrix3d& m) {
 }  // namespace
 
 void HeldLoads::Clear() {
+  torque_bound_ = -1.0;
   force_world_.setZero();
   force_body_.setZero();
   torque_world_.setZero();
@@ -20,23 +23,27 @@ void HeldLoads::Clear() {
 }
 
 void HeldLoads::AddWorldForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset) {
+  torque_bound_ = -1.0;
   force_world_ += force;
   force_moment_ += force * offset.transpose();
   has_torque_ = true;
 }
 
 void HeldLoads::AddBodyForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset) {
+  torque_bound_ = -1.0;
   force_body_ += force;
   torque_body_ += offset.cross(force);
   has_torque_ = true;
 }
 
 void HeldLoads::AddWorldCouple(const Eigen::Vector3d& couple) {
+  torque_bound_ = -1.0;
   torque_world_ += couple;
   has_torque_ = true;
 }
 
 void HeldLoads::AddBodyCouple(const Eigen::Vector3d& couple) {
+  torque_bound_ = -1.0;
   torque_body_ += couple;
   has_torque_ = true;
 }
@@ -54,6 +61,33 @@ double HeldLoads::DroppedTorque(const Eigen::Matrix3d& rotation) const {
       torque_body_ + rotation.transpose() * torque_world_ +
       rotation.transpose() * VeeOfAntisymmetricPart(force_moment_ * rotation.transpose());
   return (torque_body - torque_projector_ * torque_body).norm();
+}
+
+double HeldLoads::TorqueBound() const {
+  if (!has_torque_) return 0.0;
+  // |vee(C Aᵀ − A Cᵀ)| <= 2 ‖C‖ (Frobenius bounds the spectral norm).
+  if (torque_bound_ < 0.0) {
+    torque_bound_ = torque_world_.norm() + torque_body_.norm() + 2.0 * force_moment_.norm();
+  }
+  return torque_bound_;
+}
+
+double HeldLoads::TurnRate(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& omega) const {
+  double rate = 0.0;
+  const double force_bound = force_world_.norm() + force_body_.norm();
+  if (force_bound > 0.0) rate = omega.cross(rotation * force_body_).norm() / force_bound;
+  const double torque_bound = TorqueBound();
+  if (torque_bound > 0.0) {
+    // Ȧ = ω̃ A: d(A τ̄)/dt = ω × A τ̄, and d vee(C Aᵀ − A Cᵀ)/dt = vee(Y − Yᵀ) with
+    // Y = C Ȧᵀ = −C Aᵀ ω̃.
+    Eigen::Matrix3d omega_hat;
+    omega_hat << 0.0, -omega.z(), omega.y(), omega.z(), 0.0, -omega.x(), -omega.y(), omega.x(), 0.0;
+    const Eigen::Vector3d torque_rate =
+        omega.cross(rotation * torque_body_) +
+        VeeOfAntisymmetricPart(-(force_moment_ * rotation.transpose()) * omega_hat);
+    rate = std::max(rate, torque_rate.norm() / torque_bound);
+  }
+  return rate;
 }
 
 Wrench HeldLoads::At(double /*time_in_step_s*/, const Eigen::Matrix3d& rotation) const {

@@ -12,6 +12,7 @@
 #include "rigid_body_sim/core/integrators/splitting.h"
 #include "rigid_body_sim/core/integrators/splitting4.h"
 #include "rigid_body_sim/core/integrators/symplectic_euler.h"
+#include "rigid_body_sim/core/kinematics.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -27,6 +28,18 @@ void Integrator::StepFree(const std::vector<BodyModel>& models,
                           const std::vector<std::size_t>& bodies, double dt_s,
                           std::vector<BodyState>* states) const {
   for (const std::size_t body : bodies) Step(models[body], nullptr, dt_s, &(*states)[body]);
+}
+
+void Integrator::StepLoaded(const std::vector<BodyModel>& models,
+                            const std::vector<std::size_t>& bodies,
+                            const std::vector<HeldLoads>& loads, double dt_s,
+                            std::vector<BodyState>* states) const {
+  for (const std::size_t body : bodies) Step(models[body], &loads[body], dt_s, &(*states)[body]);
+}
+
+double Integrator::RotationErrorRate(const BodyModel& model, const BodyState& state,
+                                     double /*dt_s*/) const {
+  return AngularVelocity(model, state).norm();
 }
 
 const char* const kDefaultIntegrator = "casimir_splitting4";

@@ -1,7 +1,11 @@
 #include "rigid_body_sim/core/world.h"
 
+#include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <unordered_map>
+
+#include "rigid_body_sim/core/kinematics.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -13,9 +17,14 @@ constexpr double kTimeToleranceInSteps = 1e-3;
 // A couple smaller than this along a null axis is round-off, not a dropped load.
 constexpr double kDroppedCoupleTolerance_Nm = 1e-9;
 
-// Free bodies handed to Integrator::StepFree at a time: small enough that
-// their states are still in cache when they are checked.
-constexpr std::size_t kFreeBatch = 64;
+// Every rate SubstepsFor weighs is at most this times |L|·max_k(1/λ_k) (the
+// Casimir rate ∛(αβ(α + β)) <= ∛2·max(α, β)), so a body below the bound
+// needs no closer look.
+const double kRateBoundFactor = std::cbrt(2.0);
+
+// Bodies handed to Integrator::StepFree or StepLoaded at a time: small
+// enough that their states are still in cache when they are checked.
+constexpr std::size_t kBatch = 64;
 
 std::vector<std::size_t> ParticleCounts(const std::vector<BodyModel>& models) {
   std::vector<std::size_t> counts;
@@ -54,15 +63,18 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
       throw std::invalid_argument(Entry(i, name) + ": name duplicates bodies[" +
                                   std::to_string(previous->second) + "]");
     }
-    const BodyFault fault = CheckState(models_[i], states_[i], options_.dt_s);
+    if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
+    BodyFault fault = CheckState(models_[i], states_[i]);
+    if (fault == BodyFault::kNone && SubstepsFor(i, states_[i]) == 0) fault = BodyFault::kSpinAliased;
     if (fault != BodyFault::kNone) {
       throw std::invalid_argument(Entry(i, name) + ": initial state is " + ToString(fault));
     }
-    if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
   }
   has_gravity_ = !options_.gravity.isZero(0.0);
-  free_batch_.reserve(kFreeBatch);
-  free_batch_before_.reserve(kFreeBatch);
+  free_batch_.reserve(kBatch);
+  free_batch_before_.reserve(kBatch);
+  loaded_batch_.reserve(kBatch);
+  loaded_batch_before_.reserve(kBatch);
 }
 
 std::optional<std::size_t> World::FindBody(const std::string& name) const {
@@ -72,9 +84,46 @@ std::optional<std::size_t> World::FindBody(const std::string& name) const {
   return std::nullopt;
 }
 
+std::uint32_t World::SubstepsFor(std::size_t body, const BodyState& state) const {
+  const BodyModel& model = models_[body];
+  const HeldLoads* load = loaded_[body] ? &loads_[body] : nullptr;
+  const double dt = options_.dt_s;
+  // Below the bound on every rate, one step (squared, to spare the root).
+  const double turn_bound = dt * kRateBoundFactor * model.inverse_principal_moments().maxCoeff();
+  const double reach = load != nullptr ? state.angular_momentum.norm() + dt * load->TorqueBound()
+                                       : 0.0;
+  if (load != nullptr ? turn_bound * reach <= kMaxSubstepAngle
+                      : turn_bound * turn_bound * state.angular_momentum.squaredNorm() <=
+                            kMaxSubstepAngle * kMaxSubstepAngle) {
+    return 1;
+  }
+  double rotation_rate = integrator_->RotationErrorRate(model, state, dt);
+  double load_rate = 0.0;
+  if (load != nullptr) {
+    // The kick changes L within the step, so the rates at its end count too.
+    const Eigen::Matrix3d a = state.orientation.toRotationMatrix();
+    BodyState kicked = state;
+    kicked.angular_momentum += dt * load->At(0.0, a).torque;
+    rotation_rate = std::max(rotation_rate, integrator_->RotationErrorRate(model, kicked, dt));
+    load_rate = std::max(load->TurnRate(a, AngularVelocity(model, a, state.angular_momentum)),
+                         load->TurnRate(a, AngularVelocity(model, a, kicked.angular_momentum)));
+  }
+  const double cap = options_.max_substeps;
+  const double rotation_substeps = std::ceil(dt * rotation_rate / kMaxSubstepAngle);
+  if (!(rotation_substeps <= cap)) return 0;  // a NaN rate too
+  // A load turning faster than the cap can follow (a force off the axis of a
+  // needle spun up about it) is aliased however often it is sampled: it
+  // is sampled at the rotation's substeps alone, and freezes nothing. Its
+  // impulse per step is still bounded by dt times the load's size.
+  const double load_substeps = std::ceil(dt * load_rate / kMaxSubstepAngle);
+  const double substeps = load_substeps <= cap ? std::max(rotation_substeps, load_substeps) : rotation_substeps;
+  return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(substeps));
+}
+
 void World::Step() {
   wrenches_.Reduce(time(), options_.wrench_timeout_s, kTimeToleranceInSteps * options_.dt_s,
                    models_, &loads_, &loaded_);
+  last_step_substeps_max_ = 1;
   for (std::size_t i = 0; i < models_.size(); ++i) {
     if (faults_[i] != BodyFault::kNone) continue;
     const BodyModel& model = models_[i];
@@ -83,33 +132,65 @@ void World::Step() {
       loads_[i].AddCentralForce(model.mass() * options_.gravity);
       loaded_[i] = 1;
     }
-    if (!loaded_[i]) {
-      if (state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
-        continue;  // at rest and unloaded: nothing can move it, so skip the scheme
-      }
-      if (model.is_full_rank()) {
+    if (!loaded_[i] && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
+      continue;  // at rest and unloaded: nothing can move it, so skip the scheme
+    }
+    const std::uint32_t substeps = SubstepsFor(i, state);
+    if (substeps == 0) {
+      const BodyFault fault = CheckState(model, state);  // a NaN state set from outside
+      Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased);
+      continue;
+    }
+    if (substeps == 1 && model.is_full_rank()) {
+      if (loaded_[i]) {
+        loaded_batch_.push_back(i);
+        loaded_batch_before_.push_back(state);
+        if (loaded_batch_.size() == kBatch) StepLoadedBatch();
+      } else {
         free_batch_.push_back(i);
-        free_batch_before_.push_back(state);
-        if (free_batch_.size() == kFreeBatch) StepFreeBatch();
-        continue;
+        free_batch_before_.push_back({state.position, state.orientation});
+        if (free_batch_.size() == kBatch) StepFreeBatch();
       }
-    } else if (!model.is_full_rank() &&
-               loads_[i].DroppedTorque(state.orientation.toRotationMatrix()) >
-                   kDroppedCoupleTolerance_Nm) {
+      continue;
+    }
+    if (loaded_[i] && !model.is_full_rank() &&
+        loads_[i].DroppedTorque(state.orientation.toRotationMatrix()) > kDroppedCoupleTolerance_Nm) {
       ++dropped_couples_;
     }
+    last_step_substeps_max_ = std::max(last_step_substeps_max_, substeps);
     const BodyState before = state;
-    integrator_->Step(model, loaded_[i] ? &loads_[i] : nullptr, options_.dt_s, &state);
+    const Load* load = loaded_[i] ? &loads_[i] : nullptr;
+    const double h = options_.dt_s / substeps;
+    for (std::uint32_t k = 0; k < substeps; ++k) integrator_->Step(model, load, h, &state);
     FinishStep(i, before);
   }
   StepFreeBatch();
+  StepLoadedBatch();
   ++steps_;
+}
+
+void World::StepLoadedBatch() {
+  if (loaded_batch_.empty()) return;
+  integrator_->StepLoaded(models_, loaded_batch_, loads_, options_.dt_s, &states_);
+  for (std::size_t k = 0; k < loaded_batch_.size(); ++k) {
+    FinishStep(loaded_batch_[k], loaded_batch_before_[k]);
+  }
+  loaded_batch_.clear();
+  loaded_batch_before_.clear();
 }
 
 void World::StepFreeBatch() {
   if (free_batch_.empty()) return;
   integrator_->StepFree(models_, free_batch_, options_.dt_s, &states_);
-  for (std::size_t k = 0; k < free_batch_.size(); ++k) FinishStep(free_batch_[k], free_batch_before_[k]);
+  for (std::size_t k = 0; k < free_batch_.size(); ++k) {
+    BodyState& state = states_[free_batch_[k]];
+    const BodyFault fault = CheckPose(state);
+    if (fault != BodyFault::kNone) {
+      state.position = free_batch_before_[k].position;
+      state.orientation = free_batch_before_[k].orientation;
+      Freeze(free_batch_[k], fault);
+    }
+  }
   free_batch_.clear();
   free_batch_before_.clear();
 }
@@ -122,7 +203,7 @@ void World::FinishStep(std::size_t body, const BodyState& before) {
     const Eigen::Matrix3d a = state.orientation.toRotationMatrix();
     state.angular_momentum = a * (model.range_projector() * (a.transpose() * state.angular_momentum));
   }
-  const BodyFault fault = CheckState(model, state, options_.dt_s);
+  const BodyFault fault = CheckState(model, state);
   if (fault != BodyFault::kNone) {
     state = before;
     Freeze(body, fault);

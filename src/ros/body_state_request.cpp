@@ -8,7 +8,7 @@ namespace rigid_body_sim {
 
 std::optional<core::BodyState> StateFromRequest(const core::BodyModel& model,
                                                 const geometry_msgs::Pose& pose,
-                                                const geometry_msgs::Twist& twist, double dt_s,
+                                                const geometry_msgs::Twist& twist,
                                                 std::string* reason) {
   const Eigen::Vector3d position(pose.position.x, pose.position.y, pose.position.z);
   const Eigen::Vector3d linear = FromVector3Msg(twist.linear);
@@ -24,10 +24,10 @@ std::optional<core::BodyState> StateFromRequest(const core::BodyModel& model,
     return std::nullopt;
   }
   const core::BodyState state = core::StateFromTwist(model, position, *orientation, linear, angular);
-  const core::BodyFault fault = core::CheckState(model, state, dt_s);
+  const core::BodyFault fault = core::CheckState(model, state);
   if (fault != core::BodyFault::kNone) {
     *reason = std::string("the state would be ") + core::ToString(fault) +
-              " (speed must stay below c, |angular velocity|·dt below pi)";
+              " (speed must stay below c, the kinetic energy finite)";
     return std::nullopt;
   }
   return state;

@@ -43,6 +43,7 @@ void NodeDiagnostics::RecordStep(Clock::duration step_time, const ros::Time& sta
   ++window_.steps;
   window_.step_time_total += step_time;
   window_.step_time_max = std::max(window_.step_time_max, step_time);
+  window_.substeps_max = std::max(window_.substeps_max, world_.last_step_substeps_max());
 }
 
 void NodeDiagnostics::ReportNewFaults(const ros::Time& stamp) {
@@ -74,6 +75,7 @@ void NodeDiagnostics::Report(Clock::time_point now, const ros::Time& stamp, bool
   step_time_mean_us_ =
       window_.steps > 0 ? Microseconds(window_.step_time_total) / static_cast<double>(window_.steps) : 0.0;
   step_time_max_us_ = Microseconds(window_.step_time_max);
+  substeps_max_ = window_.substeps_max;
   window_ = Window{now, world_.time()};
   paused_ = paused;
   stamp_ = stamp;
@@ -81,10 +83,12 @@ void NodeDiagnostics::Report(Clock::time_point now, const ros::Time& stamp, bool
   // Every log message costs roscpp O(advertised topics) in this thread (it
   // lists them all in the /rosout message): ~3.5 ms at 10⁴ bodies.
   if (settings_.status_period_s > 0.0 && now >= next_status_) {
+    const std::string substeps =
+        substeps_max_ > 1 ? ", up to " + std::to_string(substeps_max_) + " substeps" : "";
     ROS_INFO("sim time %.3f s (%.3f s since start), real-time factor %.3f%s, %zu bodies, "
-             "step %.1f us (max %.1f us), %llu overruns",
+             "step %.1f us (max %.1f us)%s, %llu overruns",
              stamp.toSec(), world_.time(), achieved_real_time_factor_, paused ? " (paused)" : "",
-             world_.size(), step_time_mean_us_, step_time_max_us_,
+             world_.size(), step_time_mean_us_, step_time_max_us_, substeps.c_str(),
              static_cast<unsigned long long>(pacer_.overruns() - overruns_at_last_status_));
     overruns_at_last_status_ = pacer_.overruns();
     next_status_ = now + std::chrono::duration_cast<Clock::duration>(
@@ -117,6 +121,8 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
   status.add("paused", paused_);
   status.add("step_time_mean_us", step_time_mean_us_);
   status.add("step_time_max_us", step_time_max_us_);
+  status.add("substeps_max", substeps_max_);
+  status.add("max_substeps", world_.options().max_substeps);
   status.add("overruns", pacer_.overruns());
   status.add("catch_up_limit_hits", pacer_.catch_up_limit_hits());
   status.add("real_time_factor_target", settings_.real_time_factor);

@@ -21,6 +21,8 @@ constexpr int kMaxBodies = 100000;
 constexpr int kMaxParticlesPerBody = 100000;
 constexpr int kMaxShapeResolution = 40;  // 64,000 cells
 constexpr std::size_t kMaxNameLength = 128;
+// ~max_substeps above this would let one body stall the loop for seconds.
+constexpr double kMaxSubstepsLimit = 1e6;
 
 std::string FormatNumber(double value) {
   char text[32];
@@ -301,6 +303,12 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   if (settings.status_period_s < 0.0) {
     throw SceneError("~status_period must be >= 0, got " + FormatNumber(settings.status_period_s));
   }
+  const double max_substeps = params.Number("max_substeps", settings.max_substeps);
+  if (max_substeps < 1.0 || max_substeps > kMaxSubstepsLimit || max_substeps != std::floor(max_substeps)) {
+    throw SceneError("~max_substeps must be a whole number from 1 to " +
+                     FormatNumber(kMaxSubstepsLimit) + ", got " + FormatNumber(max_substeps));
+  }
+  settings.max_substeps = static_cast<std::uint32_t>(max_substeps);
   return settings;
 }
 

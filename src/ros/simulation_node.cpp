@@ -24,6 +24,7 @@ core::WorldOptions MakeWorldOptions(const NodeSettings& settings) {
   options.dt_s = 1.0 / settings.rate_hz;
   options.gravity = settings.gravity_mps2;
   options.wrench_timeout_s = settings.wrench_timeout_s;
+  options.max_substeps = settings.max_substeps;
   return options;
 }
 
@@ -177,9 +178,14 @@ bool SimulationNode::OnSetBodyState(SetBodyState::Request& request,
     response.message = "unknown body '" + request.body + "'";
     return true;
   }
-  const std::optional<core::BodyState> state = StateFromRequest(
-      world_.model(*body), request.pose, request.twist, world_.options().dt_s, &response.message);
+  const std::optional<core::BodyState> state =
+      StateFromRequest(world_.model(*body), request.pose, request.twist, &response.message);
   if (!state) return true;
+  if (world_.SubstepsFor(*body, *state) == 0) {
+    response.message = "the state would be spin_aliased: its step would need more than " +
+                       std::to_string(world_.options().max_substeps) + " substeps (~max_substeps)";
+    return true;
+  }
   world_.SetBodyState(*body, *state);
   diagnostics_.OnBodyStateSet(*body);
   response.success = true;

@@ -1,6 +1,7 @@
-// Integrator::StepFree, through World::Step: every scheme's batch of free
-// bodies (casimir_splitting4's SIMD lanes included) gives what Step gives
-// body by body, to round-off, and a bad body in a batch is frozen alone.
+// Integrator::StepFree and StepLoaded, through World::Step: every scheme's
+// batch of free or loaded bodies (casimir_splitting4's SIMD lanes included)
+// gives what Step gives body by body, to round-off, and a bad body in a
+// batch is frozen alone.
 #include <cmath>
 #include <random>
 
@@ -59,10 +60,13 @@ TEST_P(EveryScheme, StepFreeOfABatchIsStepBodyByBody) {
   const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
   const int steps = GetParam() == "exact_free" ? 50 : 1000;
   for (int n = 0; n < steps; ++n) {
-    world.Step();
     for (std::size_t i = 0; i < world.size(); ++i) {
-      integrator->Step(world.model(i), nullptr, dt, &expected[i]);
+      const std::uint32_t substeps = world.SubstepsFor(i, world.state(i));  // body 11: > 1
+      for (std::uint32_t k = 0; k < substeps; ++k) {
+        integrator->Step(world.model(i), nullptr, dt / substeps, &expected[i]);
+      }
     }
+    world.Step();
   }
   // Round-off only: the lanes evaluate the same flows with series instead of
   // sin/cos and a Newton step instead of a division (each ~1e-16 per step),
@@ -75,6 +79,62 @@ TEST_P(EveryScheme, StepFreeOfABatchIsStepBodyByBody) {
     EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance);
     EXPECT_EQ(world.state(i).angular_momentum, expected[i].angular_momentum);
     EXPECT_EQ(world.state(i).linear_momentum, expected[i].linear_momentum);
+  }
+}
+
+TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
+  // The same bodies under gravity and held particle forces and couples in
+  // world and body axes: the World's batches against Step with the same
+  // loads, body by body.
+  const double dt = 1e-3;
+  WorldOptions options;
+  options.integrator = GetParam();
+  options.dt_s = dt;
+  options.gravity = {0.3, -0.2, -9.81};
+  World free_world = MakeFreeWorld(GetParam(), dt);
+  World world(free_world.models(), free_world.states(), options);
+  std::vector<HeldLoads> loads(world.size());
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    ParticleWrench push;
+    push.body = i;
+    push.particle = i % world.model(i).particle_count();
+    push.axes = i % 2 ? WrenchAxes::kBody : WrenchAxes::kWorld;
+    push.force = Eigen::Vector3d(0.5, -1.0, 0.25) * (1.0 + 0.1 * i);
+    push.couple = i % 3 ? Eigen::Vector3d(0.02, 0.01, -0.03) : Eigen::Vector3d::Zero();
+    world.HoldWrench(push);
+    const Eigen::Vector3d& offset = world.model(i).particle_offsets()[push.particle];
+    if (push.axes == WrenchAxes::kBody) {
+      loads[i].AddBodyForce(push.force, offset);
+      loads[i].AddBodyCouple(push.couple);
+    } else {
+      loads[i].AddWorldForce(push.force, offset);
+      loads[i].AddWorldCouple(push.couple);
+    }
+    loads[i].AddCentralForce(world.model(i).mass() * options.gravity);
+  }
+  world.Step();  // from here on SubstepsFor sees the held loads
+  std::vector<BodyState> expected = world.states();
+  const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
+  const int steps = GetParam() == "exact_free" ? 50 : 1000;
+  for (int n = 0; n < steps; ++n) {
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      const std::uint32_t substeps = world.SubstepsFor(i, world.state(i));
+      for (std::uint32_t k = 0; k < substeps; ++k) {
+        integrator->Step(world.model(i), &loads[i], dt / substeps, &expected[i]);
+      }
+    }
+    world.Step();
+  }
+  // Round-off as above, on states that now move in every component; p and L
+  // grow to ~10, so their tolerance scales with them.
+  const double tolerance = 1e-16 * steps * 10;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    SCOPED_TRACE("body " + std::to_string(i));
+    EXPECT_EQ(world.fault(i), BodyFault::kNone);
+    EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation), tolerance);
+    EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance * 10);
+    EXPECT_LT((world.state(i).linear_momentum - expected[i].linear_momentum).norm(), tolerance * 10);
+    EXPECT_LT((world.state(i).angular_momentum - expected[i].angular_momentum).norm(), tolerance * 10);
   }
 }
 

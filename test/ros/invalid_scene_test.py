@@ -223,6 +223,14 @@ class InvalidScene(unittest.TestCase):
         self.check_rejected('status_period_negative',
                             {'status_period': -1.0, 'bodies': [good_body()]}, 'status_period')
 
+    def test_max_substeps_zero(self):
+        self.check_rejected('max_substeps_zero',
+                            {'max_substeps': 0, 'bodies': [good_body()]}, 'max_substeps')
+
+    def test_max_substeps_fractional(self):
+        self.check_rejected('max_substeps_fractional',
+                            {'max_substeps': 2.5, 'bodies': [good_body()]}, 'max_substeps')
+
 
 if __name__ == '__main__':
     rostest.rosrun(PKG, 'invalid_scene', InvalidScene)

@@ -31,8 +31,23 @@ class HeldLoads final : public Load {
   // Norm of the couple dropped by the projector at orientation `rotation` [N m].
   double DroppedTorque(const Eigen::Matrix3d& rotation) const;
 
+  // An upper bound on |τ| at any orientation [N m].
+  double TorqueBound() const;
+  // How fast the wrench turns when the body turns at ω (world) [rad/s]:
+  // |dF/dt| and |dτ/dt| over the bounds of |F| and |τ|, the larger. Zero for
+  // loads that do not depend on the orientation (world forces at the COM,
+  // world couples) and for turns that leave them unchanged.
+  double TurnRate(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& omega) const;
+
   Wrench At(double time_in_step_s, const Eigen::Matrix3d& rotation) const override;
   bool has_torque() const override { return has_torque_; }
+
+  // The reduced parts, for kernels that evaluate At themselves.
+  const Eigen::Vector3d& force_world() const { return force_world_; }
+  const Eigen::Vector3d& force_body() const { return force_body_; }
+  const Eigen::Vector3d& torque_world() const { return torque_world_; }
+  const Eigen::Vector3d& torque_body() const { return torque_body_; }
+  const Eigen::Matrix3d& force_moment() const { return force_moment_; }
 
  private:
   Eigen::Vector3d force_world_ = Eigen::Vector3d::Zero();
@@ -41,6 +56,7 @@ class HeldLoads final : public Load {
   Eigen::Vector3d torque_body_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d force_moment_ = Eigen::Matrix3d::Zero();  // C = Σ f_i r̄_iᵀ
   Eigen::Matrix3d torque_projector_ = Eigen::Matrix3d::Identity();
+  mutable double torque_bound_ = -1.0;  // TorqueBound, once asked; < 0: not yet
   bool has_torque_ = false;
   bool projects_torque_ = false;
 };

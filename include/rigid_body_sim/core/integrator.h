@@ -8,6 +8,7 @@
 
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/load.h"
 
 namespace rigid_body_sim::core {
@@ -38,6 +39,21 @@ class Integrator {
   // default steps them one by one. Checking the new states is the caller's.
   virtual void StepFree(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
                         double dt_s, std::vector<BodyState>* states) const;
+  // Advances the full-rank bodies `bodies` under their held loads
+  // (loads[body]) by dt_s, as Step would, several at a time where a scheme
+  // can; this default steps them one by one.
+  virtual void StepLoaded(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
+                          const std::vector<HeldLoads>& loads, double dt_s,
+                          std::vector<BodyState>* states) const;
+
+  // The rate [rad/s] at which this scheme's free rotation leaves its exact
+  // flows over a step of dt_s from `state`: the local error grows with dt
+  // times this rate, so World substeps a body to keep that angle small. The
+  // default is |ω|, for schemes whose error follows the raw spin; schemes
+  // that rotate exactly about some axes say how little of the spin they
+  // approximate.
+  virtual double RotationErrorRate(const BodyModel& model, const BodyState& state,
+                                   double dt_s) const;
 
  private:
   friend std::unique_ptr<Integrator> MakeIntegrator(const std::string& name);

@@ -25,7 +25,15 @@ struct WorldOptions {
   Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // [m/s²], at every COM
   double wrench_timeout_s = 0.0;                      // 0: held until replaced
   double start_time_s = 0.0;                          // t_0
+  // A body whose step leaves the scheme's accurate range takes up to this
+  // many substeps of dt/n instead; beyond it, it is frozen (kSpinAliased).
+  std::uint32_t max_substeps = 1000;
 };
+
+// The angle [rad] a substep may turn through the parts of the motion that the
+// scheme or the kicks do not follow exactly (Integrator::RotationErrorRate,
+// HeldLoads::TurnRate).
+constexpr double kMaxSubstepAngle = 0.04;
 
 class World {
  public:
@@ -50,10 +58,18 @@ class World {
   std::uint64_t step_count() const { return steps_; }
 
   // Advances every body from t_n to t_(n+1) with the wrenches active at t_n
-  // and gravity. A body whose state would break a CheckState bound keeps its
-  // last good state and is frozen from then on; the others go on. This is
-  // the only place that freezes a body.
+  // and gravity, in SubstepsFor substeps. A body whose state would break a
+  // CheckState bound, or that needs more than max_substeps, keeps its last
+  // good state and is frozen from then on; the others go on. This is the
+  // only place that freezes a body.
   void Step();
+
+  // How many substeps of dt/n `body` needs from `state` under its current
+  // load: the least n with dt/n · rate <= kMaxSubstepAngle, 0 if that is more
+  // than max_substeps.
+  std::uint32_t SubstepsFor(std::size_t body, const BodyState& state) const;
+  // The most substeps a body took in the last Step.
+  std::uint32_t last_step_substeps_max() const { return last_step_substeps_max_; }
 
   // Every body back to its initial state, wrenches cleared, faults cleared;
   // time goes on.
@@ -83,6 +99,8 @@ class World {
   // Steps the bodies in free_batch_ through StepFree, checks each, and
   // empties it.
   void StepFreeBatch();
+  // The same for loaded_batch_ through StepLoaded.
+  void StepLoadedBatch();
 
   std::vector<BodyModel> models_;
   std::vector<BodyState> initial_states_;
@@ -95,13 +113,23 @@ class World {
   std::vector<char> loaded_;
   std::vector<BodyFault> faults_;
   // Free bodies (full rank, moving, no load) of this step, stepped in
-  // batches through Integrator::StepFree, and their states before it.
+  // batches through Integrator::StepFree, and their poses before it (a free
+  // step changes nothing else).
+  struct Pose {
+    Eigen::Vector3d position;
+    Eigen::Quaterniond orientation;
+  };
   std::vector<std::size_t> free_batch_;
-  std::vector<BodyState> free_batch_before_;
+  std::vector<Pose> free_batch_before_;
+  // Loaded full-rank bodies that need no substeps, batched the same way
+  // through Integrator::StepLoaded, and their states before it.
+  std::vector<std::size_t> loaded_batch_;
+  std::vector<BodyState> loaded_batch_before_;
   std::size_t frozen_count_ = 0;
   bool has_gravity_ = false;
   std::uint64_t steps_ = 0;
   std::uint64_t dropped_couples_ = 0;
+  std::uint32_t last_step_substeps_max_ = 1;
 };
 
 }  // namespace rigid_body_sim::core

@@ -14,11 +14,12 @@ namespace rigid_body_sim {
 
 // The state a request asks for (pose and twist of the COM, world axes), or
 // nullopt with `reason` set: every number finite, a non-zero quaternion
-// (normalised), and a state the world accepts (core::CheckState at dt_s:
-// below the speed of light, |ω|·dt < π, nothing that overflows).
+// (normalised), and a state within core::CheckState's bounds (below the
+// speed of light, nothing that overflows). Whether the world can step it
+// (core::World::SubstepsFor) is the caller's to ask.
 std::optional<core::BodyState> StateFromRequest(const core::BodyModel& model,
                                                 const geometry_msgs::Pose& pose,
-                                                const geometry_msgs::Twist& twist, double dt_s,
+                                                const geometry_msgs::Twist& twist,
                                                 std::string* reason);
 
 }  // namespace rigid_body_sim

@@ -53,6 +53,7 @@ class NodeDiagnostics {
     std::uint64_t steps = 0;
     Clock::duration step_time_total{};
     Clock::duration step_time_max{};
+    std::uint32_t substeps_max = 1;
   };
 
   void ReportNewFaults(const ros::Time& stamp);
@@ -72,6 +73,7 @@ class NodeDiagnostics {
   double step_time_mean_us_ = 0.0;
   double step_time_max_us_ = 0.0;
   double achieved_real_time_factor_ = 0.0;
+  std::uint32_t substeps_max_ = 1;
   bool paused_ = false;
   ros::Time stamp_;
   std::uint64_t overruns_at_last_status_ = 0;  // for the status line's count

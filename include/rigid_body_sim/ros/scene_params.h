@@ -2,6 +2,7 @@
 // scene: the settings of the node and the bodies of the world.
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -13,6 +14,7 @@
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/world.h"
 
 namespace rigid_body_sim {
 
@@ -29,6 +31,9 @@ struct NodeSettings {
   bool publish_tf = true;
   double particle_marker_diameter_m = 0.04;  // ~particles sphere size (extension)
   double status_period_s = 1.0;  // the INFO status line's period, 0: never (extension)
+  // Most substeps of dt/n one body may take in a step (extension); the
+  // default keeps one body's worst step under 1 ms at 10,000 bodies.
+  std::uint32_t max_substeps = core::WorldOptions{}.max_substeps;
 };
 
 struct Scene {

@@ -1,56 +1,12 @@
 #include "casimir_free_lanes.h"
 
-#include <cmath>
-
-#include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "lane_math.h"
 #include "step_parts.h"
 
-// One clone of the kernel per x86-64 level, picked by the loader; elsewhere
-// the compiler's default vectorisation.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
-#define RBS_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
-#else
-#define RBS_SIMD_CLONES
-#endif
-
 namespace rigid_body_sim::core {
-namespace {
 
-struct Quaternion {
-  double x, y, z, w;
-};
-
-inline Quaternion Multiply(const Quaternion& a, const Quaternion& b) {
-  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
-          a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
-}
-
-// exp of the rotation vector θ for |θ| <= 1/16, by the series of cos(|θ|/2) and
-// sin(|θ|/2)/|θ| in |θ|²: no square root, no division (truncation < 1e-21).
-inline Quaternion ExpMapSmall(double theta_x, double theta_y, double theta_z) {
-  const double u2 = 0.25 * (theta_x * theta_x + theta_y * theta_y + theta_z * theta_z);
-  const double half_cos = 1.0 + u2 * (-1.0 / 2 + u2 * (1.0 / 24 + u2 * (-1.0 / 720 + u2 * (1.0 / 40320))));
-  const double sin_ratio =
-      0.5 * (1.0 + u2 * (-1.0 / 6 + u2 * (1.0 / 120 + u2 * (-1.0 / 5040 + u2 * (1.0 / 362880)))));
-  return {sin_ratio * theta_x, sin_ratio * theta_y, sin_ratio * theta_z, half_cos};
-}
-
-// H_1 and H_3 flows of AxisFlow<0> and AxisFlow<2> on plain numbers.
-inline void Axis1Flow(double coefficient, double h, double* m, Quaternion* q) {
-  double s, c;
-  SinCosSmall(0.5 * h * coefficient * m[0], &s, &c);
-  AxisTurn(s, c, &m[1], &m[2], &q->w, &q->y, &q->z, &q->x);
-}
-
-inline void Axis3Flow(double coefficient, double h, double* m, Quaternion* q) {
-  double s, c;
-  SinCosSmall(0.5 * h * coefficient * m[2], &s, &c);
-  AxisTurn(s, c, &m[0], &m[1], &q->w, &q->x, &q->y, &q->z);
-}
-
-}  // namespace
+using lanes::ExpMapSmall;
+using lanes::Quaternion;
 
 FreeLanes::FreeLanes() {
   for (std::size_t l = 0; l < kFreeLanes; ++l) {
@@ -77,12 +33,8 @@ RBS_SIMD_CLONES void CasimirFreeStep4(double h, FreeLanes* lanes) {
     Quaternion q = Multiply(body, axes);
     const double lx = b.angular_momentum[0][l], ly = b.angular_momentum[1][l],
                  lz = b.angular_momentum[2][l];
-    // Π = R(q)ᵀ L = L + w t + n × t with n = −q_vec and t = 2 n × L.
-    const double nx = -q.x, ny = -q.y, nz = -q.z;
-    const double tx = 2.0 * (ny * lz - nz * ly), ty = 2.0 * (nz * lx - nx * lz),
-                 tz = 2.0 * (nx * ly - ny * lx);
-    double m[3] = {lx + q.w * tx + (ny * tz - nz * ty), ly + q.w * ty + (nz * tx - nx * tz),
-                   lz + q.w * tz + (nx * ty - ny * tx)};
+    double m[3];  // Π = R(q)ᵀ L
+    RotateInverse(q, lx, ly, lz, m);
 
     const double a1 = b.axis1[l], a3 = b.axis3[l];
     Axis1Flow(a1, 0.5 * outer, m, &q);
@@ -95,13 +47,11 @@ RBS_SIMD_CLONES void CasimirFreeStep4(double h, FreeLanes* lanes) {
 
     const double turn = h * b.casimir[l];
     q = Multiply(ExpMapSmall(turn * lx, turn * ly, turn * lz), q);
-    q = Multiply(q, Quaternion{-axes.x, -axes.y, -axes.z, axes.w});
-    // |q|² = 1 + ε with ε ~ 1e-16: one Newton step leaves O(ε²).
-    const double scale = 1.5 - 0.5 * (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
-    b.orientation[0][l] = scale * q.x;
-    b.orientation[1][l] = scale * q.y;
-    b.orientation[2][l] = scale * q.z;
-    b.orientation[3][l] = scale * q.w;
+    q = Normalized(Multiply(q, Quaternion{-axes.x, -axes.y, -axes.z, axes.w}));
+    b.orientation[0][l] = q.x;
+    b.orientation[1][l] = q.y;
+    b.orientation[2][l] = q.z;
+    b.orientation[3][l] = q.w;
   }
 }
 

@@ -44,20 +44,7 @@ struct FreeLanes {
 
   // Copies body `model` in `state` into `lane`.
   void Load(std::size_t lane, const BodyModel& model, const BodyState& state) {
-    for (int k = 0; k < 3; ++k) {
-      position[k][lane] = state.position[k];
-      linear_momentum[k][lane] = state.linear_momentum[k];
-      angular_momentum[k][lane] = state.angular_momentum[k];
-    }
-    for (int k = 0; k < 4; ++k) {
-      orientation[k][lane] = state.orientation.coeffs()[k];
-      principal_axes[k][lane] = model.principal_axes().coeffs()[k];
-    }
-    const CasimirSplit split(model);
-    mass[lane] = model.mass();
-    casimir[lane] = split.casimir;
-    axis1[lane] = split.axis1;
-    axis3[lane] = split.axis3;
+    LoadLane(lane, model, state, this);
   }
   // Writes the lane's position and orientation (the only parts a free step
   // changes) to `state`.

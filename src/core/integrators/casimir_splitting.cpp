@@ -9,4 +9,9 @@ void CasimirSplittingIntegrator::Step(const BodyModel& model, const Load* load, 
   CasimirStrangStep(model, CasimirSplit(model), load, 0.0, dt_s, state);
 }
 
+double CasimirSplittingIntegrator::RotationErrorRate(const BodyModel& model, const BodyState& state,
+                                                     double dt_s) const {
+  return CasimirErrorRate(model, CasimirSplit(model), state, dt_s);
+}
+
 }  // namespace rigid_body_sim::core

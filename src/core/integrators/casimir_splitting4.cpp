@@ -1,6 +1,7 @@
 #include "rigid_body_sim/core/integrators/casimir_splitting4.h"
 
 #include "casimir_free_lanes.h"
+#include "casimir_loaded_lanes.h"
 #include "casimir_step.h"
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 #include "step_parts.h"
@@ -45,11 +46,24 @@ void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load,
     FreeStep(model, split, dt_s, state);
     return;
   }
+  // The three Strang steps with neighbouring half kicks merged: they act at
+  // the same pose and time, so the sum is the same wrench once.
   const double outer = kYoshidaOuterWeight * dt_s;
   const double inner = kYoshidaInnerWeight * dt_s;
-  CasimirStrangStep(model, split, load, 0.0, outer, state);
-  CasimirStrangStep(model, split, load, outer, inner, state);
-  CasimirStrangStep(model, split, load, outer + inner, outer, state);
+  const double substeps[3] = {outer, inner, outer};
+  Kick(*load, 0.0, 0.5 * outer, state);
+  double t_s = 0.0;
+  for (int s = 0; s < 3; ++s) {
+    state->position += substeps[s] * model.inverse_mass() * state->linear_momentum;
+    CasimirRotation(model, split, substeps[s], state);
+    t_s += substeps[s];
+    Kick(*load, t_s, 0.5 * (substeps[s] + (s < 2 ? substeps[s + 1] : 0.0)), state);
+  }
+}
+
+double CasimirSplitting4Integrator::RotationErrorRate(const BodyModel& model, const BodyState& state,
+                                                      double dt_s) const {
+  return CasimirErrorRate(model, CasimirSplit(model), state, dt_s);
 }
 
 void CasimirSplitting4Integrator::StepFree(const std::vector<BodyModel>& models,
@@ -73,6 +87,32 @@ void CasimirSplitting4Integrator::StepFree(const std::vector<BodyModel>& models,
     lanes.Load(filled, model, state);
     lane_bodies[filled++] = body;
     if (filled == kFreeLanes) step_lanes();
+  }
+  if (filled > 0) step_lanes();
+}
+
+void CasimirSplitting4Integrator::StepLoaded(const std::vector<BodyModel>& models,
+                                             const std::vector<std::size_t>& bodies,
+                                             const std::vector<HeldLoads>& loads, double dt_s,
+                                             std::vector<BodyState>* states) const {
+  LoadedLanes lanes;
+  std::size_t lane_bodies[kLoadedLanes];
+  std::size_t filled = 0;
+  const auto step_lanes = [&] {
+    CasimirLoadedStep4(dt_s, &lanes);
+    for (std::size_t l = 0; l < filled; ++l) lanes.Store(l, &(*states)[lane_bodies[l]]);
+    filled = 0;
+  };
+  for (const std::size_t body : bodies) {
+    const BodyModel& model = models[body];
+    BodyState& state = (*states)[body];
+    if (!FitsLoadedLanes(model, state, loads[body], dt_s)) {
+      Step(model, &loads[body], dt_s, &state);  // too fast for the lanes' series
+      continue;
+    }
+    lanes.Load(filled, model, state, loads[body]);
+    lane_bodies[filled++] = body;
+    if (filled == kLoadedLanes) step_lanes();
   }
   if (filled > 0) step_lanes();
 }

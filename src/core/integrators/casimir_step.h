@@ -23,8 +23,45 @@ struct CasimirSplit {
   double axis3;    // 1/λ_3 − c
 };
 
+// Copies what the lane kernels read of a model (principal axes, M and the
+// Casimir split) and of a state (x, q, p, L) into `lane` of a block of lanes
+// (FreeLanes, LoadedLanes: the same field names).
+template <typename Lanes>
+void LoadLane(std::size_t lane, const BodyModel& model, const BodyState& state, Lanes* lanes) {
+  for (int k = 0; k < 3; ++k) {
+    lanes->position[k][lane] = state.position[k];
+    lanes->linear_momentum[k][lane] = state.linear_momentum[k];
+    lanes->angular_momentum[k][lane] = state.angular_momentum[k];
+  }
+  for (int k = 0; k < 4; ++k) {
+    lanes->orientation[k][lane] = state.orientation.coeffs()[k];
+    lanes->principal_axes[k][lane] = model.principal_axes().coeffs()[k];
+  }
+  const CasimirSplit split(model);
+  lanes->mass[lane] = model.mass();
+  lanes->casimir[lane] = split.casimir;
+  lanes->axis1[lane] = split.axis1;
+  lanes->axis3[lane] = split.axis3;
+}
+
+// The rate at which the Casimir split leaves exact flows. The axis-1 and
+// axis-3 flows turn at α = |a1 Π1| and β = |a3 Π3|; the composition's local
+// error comes from their commutators, of size αβ(α + β) per h³, so the rate
+// is ∛(αβ(α + β)). Π moves within a step of h: the axis-1 flow keeps Π1
+// and turns (Π2, Π3), the axis-3 flow keeps Π3 and turns (Π1, Π2). So |Π3|
+// stays below |(Π2, Π3)| as long as the axis-3 flow hardly changes that
+// (|a3| |L| h small), and likewise |Π1| below |(Π1, Π2)|; otherwise |L| is
+// the bound. The rate is zero for a symmetric top or a sphere however fast
+// they turn, and small for a needle spinning about its thin axis.
+double CasimirErrorRate(const BodyModel& model, const CasimirSplit& split, const BodyState& state,
+                        double h);
+
+// The free rotation of a Strang step of length h: B(h/2) C(h) B(h/2), then
+// the Casimir rotation about L by c|L|h.
+void CasimirRotation(const BodyModel& model, const CasimirSplit& split, double h, BodyState* state);
+
 // One Strang step of length h starting t_offset_s into the step: half kick,
-// drift, B(h/2) C(h) B(h/2) and the Casimir rotation over h, half kick.
+// drift, CasimirRotation, half kick.
 void CasimirStrangStep(const BodyModel& model, const CasimirSplit& split, const Load* load,
                        double t_offset_s, double h, BodyState* state);
 

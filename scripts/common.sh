@@ -1,0 +1,38 @@
+# shellcheck shell=bash
+# Sourced (not run) by the scripts in scripts/: where the checkout and the
+# catkin workspace are, ROS's environment, and the workspace helpers.
+#
+#   repo  the checkout (this file's parent directory)
+#   ws    the catkin workspace: RBS_WS, else $ws_default if the script set it
+#         before sourcing this file, else .build_ws/ inside the checkout. The
+#         workspace links back to the checkout, so one inside it must be a
+#         hidden directory: roslaunch's search for launch files skips those
+#         instead of looping through the link.
+#   jobs  parallel build jobs: RBS_JOBS, default 2
+repo="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+ws="${RBS_WS:-${ws_default:-$repo/.build_ws}}"
+# shellcheck disable=SC2034  # read by the scripts that source this file
+jobs="${RBS_JOBS:-2}"
+# Debian's ROS lives in /usr; its Python is /usr/bin/python3, not whatever is first on PATH.
+export PATH="/usr/bin:$PATH"
+
+# Creates $ws with the checkout linked into its src/, then runs catkin_make
+# there with ROS's Python and the given arguments; leaves the shell in $ws.
+rbs_catkin_make() {
+  if ! command -v catkin_make >/dev/null; then
+    echo "catkin_make not found: install the dependencies first (bash scripts/install_deps.sh)" >&2
+    return 1
+  fi
+  mkdir -p "$ws/src"
+  [ -e "$ws/src/rigid_body_sim" ] || ln -s "$repo" "$ws/src/rigid_body_sim"
+  cd "$ws" || return 1
+  catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@"
+}
+
+# Sources the workspace's devel/setup.bash (which reads unset variables).
+rbs_source_devel() {
+  set +u
+  # shellcheck source=/dev/null
+  source "$ws/devel/setup.bash"
+  set -u
+}

@@ -1,0 +1,77 @@
+// Plain-number pieces of the SIMD lane kernels (casimir_free_lanes,
+// casimir_loaded_lanes): no branch and no call, so loops over lanes vectorise.
+#pragma once
+
+#include "rigid_body_sim/core/integrators/free_rotation.h"
+
+// One clone of the kernel per x86-64 level, picked by the loader; elsewhere
+// the compiler's default vectorisation.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+#define RBS_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#else
+#define RBS_SIMD_CLONES
+#endif
+
+namespace rigid_body_sim::core::lanes {
+
+struct Quaternion {
+  double x, y, z, w;
+};
+
+inline Quaternion Multiply(const Quaternion& a, const Quaternion& b) {
+  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
+          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
+          a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+}
+
+// exp of the rotation vector θ for |θ| <= 1/16, by the series of cos(|θ|/2) and
+// sin(|θ|/2)/|θ| in |θ|²: no square root, no division (truncation < 1e-21).
+inline Quaternion ExpMapSmall(double theta_x, double theta_y, double theta_z) {
+  const double u2 = 0.25 * (theta_x * theta_x + theta_y * theta_y + theta_z * theta_z);
+  const double half_cos = 1.0 + u2 * (-1.0 / 2 + u2 * (1.0 / 24 + u2 * (-1.0 / 720 + u2 * (1.0 / 40320))));
+  const double sin_ratio =
+      0.5 * (1.0 + u2 * (-1.0 / 6 + u2 * (1.0 / 120 + u2 * (-1.0 / 5040 + u2 * (1.0 / 362880)))));
+  return {sin_ratio * theta_x, sin_ratio * theta_y, sin_ratio * theta_z, half_cos};
+}
+
+// H_1 and H_3 flows of AxisFlow<0> and AxisFlow<2> on plain numbers.
+inline void Axis1Flow(double coefficient, double h, double* m, Quaternion* q) {
+  double s, c;
+  SinCosSmall(0.5 * h * coefficient * m[0], &s, &c);
+  AxisTurn(s, c, &m[1], &m[2], &q->w, &q->y, &q->z, &q->x);
+}
+
+inline void Axis3Flow(double coefficient, double h, double* m, Quaternion* q) {
+  double s, c;
+  SinCosSmall(0.5 * h * coefficient * m[2], &s, &c);
+  AxisTurn(s, c, &m[0], &m[1], &q->w, &q->x, &q->y, &q->z);
+}
+
+// R(q)ᵀ v for a unit q: v + w t + n × t with n = −q_vec and t = 2 n × v.
+inline void RotateInverse(const Quaternion& q, double vx, double vy, double vz, double out[3]) {
+  const double nx = -q.x, ny = -q.y, nz = -q.z;
+  const double tx = 2.0 * (ny * vz - nz * vy), ty = 2.0 * (nz * vx - nx * vz),
+               tz = 2.0 * (nx * vy - ny * vx);
+  out[0] = vx + q.w * tx + (ny * tz - nz * ty);
+  out[1] = vy + q.w * ty + (nz * tx - nx * tz);
+  out[2] = vz + q.w * tz + (nx * ty - ny * tx);
+}
+
+// |q|² = 1 + ε with ε ~ 1e-16: one Newton step leaves O(ε²).
+inline Quaternion Normalized(const Quaternion& q) {
+  const double scale = 1.5 - 0.5 * (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
+  return {scale * q.x, scale * q.y, scale * q.z, scale * q.w};
+}
+
+// The rotation matrix of a unit q, row-major.
+inline void RotationMatrix(const Quaternion& q, double a[9]) {
+  const double xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
+  const double xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
+  const double wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;
+  a[0] = 1.0 - 2.0 * (yy + zz), a[1] = 2.0 * (xy - wz), a[2] = 2.0 * (xz + wy);
+  a[3] = 2.0 * (xy + wz), a[4] = 1.0 - 2.0 * (xx + zz), a[5] = 2.0 * (yz - wx);
+  a[6] = 2.0 * (xz - wy), a[7] = 2.0 * (yz + wx), a[8] = 1.0 - 2.0 * (xx + yy);
+}
+
+}  // namespace rigid_body_sim::core::lanes
