@@ -2,13 +2,19 @@
 // configuration found at build time, on the scenes of scene.cpp, for each dt.
 // Writes one CSV row per (scene, method, dt); plot_work_precision.py draws it.
 //
-// usage: work_precision [output.csv] [--quick]
+// usage: work_precision [output.csv] [--quick] [--ours] [--scenes a,b] [--methods a,b]
+//                       [--dts 0.1,0.01]
+//   --quick    dt ∈ {1e-2, 1e-3} only (a smoke run)
+//   --ours     our integrators only, no peer engine
+//   --scenes   only the named scenes; --methods only the named integrators
+//   --dts      these dt instead of the full set
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -108,13 +114,17 @@ BodyState RunOurs(const Scene& scene, const BodyModel& model, const std::string&
 }
 
 // Median ns per body-step over kTimedBodies bodies: kTimingRepeats samples of
-// about kSampleTarget_ns each (at most max_steps steps), after one warm-up
-// step that also sizes the samples.
+// about kSampleTarget_ns each (at most max_steps steps, which the caller keeps
+// within the scene's duration), after one warm-up step that also sizes the
+// samples. `reset` puts every body back to the scene's start before the
+// warm-up and before each sample, untimed: the timed states stay those of the
+// scene (a body spun up past a scene's end could be frozen by World's checks).
 constexpr double kSampleTarget_ns = 2e7;
 
-template <typename StepAll>
-double TimePerBodyStep(long max_steps, StepAll step_all) {
+template <typename Reset, typename StepAll>
+double TimePerBodyStep(long max_steps, Reset reset, StepAll step_all) {
   using Clock = std::chrono::steady_clock;
+  reset();
   const auto warm_up_start = Clock::now();
   step_all(0);
   const double one_step_ns =
@@ -122,8 +132,9 @@ double TimePerBodyStep(long max_steps, StepAll step_all) {
   const long steps = std::clamp<long>(std::lround(kSampleTarget_ns / one_step_ns), 1, max_steps);
   std::vector<double> samples;
   for (int r = 0; r < kTimingRepeats; ++r) {
+    reset();
     const auto start = Clock::now();
-    for (long n = 1; n <= steps; ++n) step_all(n);
+    for (long n = 0; n < steps; ++n) step_all(n);
     const std::chrono::duration<double, std::nano> elapsed = Clock::now() - start;
     samples.push_back(elapsed.count() / (double(steps) * kTimedBodies));
   }
@@ -134,16 +145,24 @@ double TimePerBodyStep(long max_steps, StepAll step_all) {
 double TimeOurs(const Scene& scene, const BodyModel& model, const std::string& integrator_name,
                 double dt, long steps) {
   if (RunsInWorld(scene)) {
-    World world = MakeSceneWorld(scene, integrator_name, dt, kTimedBodies);
-    return TimePerBodyStep(steps, [&](long) { world.Step(); });
+    std::unique_ptr<World> world;
+    return TimePerBodyStep(
+        steps,
+        [&] {
+          world.reset();
+          world = std::make_unique<World>(MakeSceneWorld(scene, integrator_name, dt, kTimedBodies));
+        },
+        [&](long) { world->Step(); });
   }
   const auto integrator = MakeIntegrator(integrator_name);
   SceneLoad load(scene, model);
-  std::vector<BodyState> states(kTimedBodies, scene.initial);
-  return TimePerBodyStep(steps, [&](long n) {
-    load.set_step_start(n * dt);
-    for (BodyState& state : states) integrator->Step(model, &load, dt, &state);
-  });
+  std::vector<BodyState> states;
+  return TimePerBodyStep(
+      steps, [&] { states.assign(kTimedBodies, scene.initial); },
+      [&](long n) {
+        load.set_step_start(n * dt);
+        for (BodyState& state : states) integrator->Step(model, &load, dt, &state);
+      });
 }
 
 // The state every method is compared with, at t_end = steps · dt (T rounded
@@ -227,6 +246,22 @@ void WriteRow(std::ofstream& csv, const Scene& scene, const std::string& engine,
   std::cout << line << std::flush;
 }
 
+// "a,b,c" → {"a", "b", "c"}.
+std::vector<std::string> SplitList(const std::string& list) {
+  std::vector<std::string> items;
+  std::size_t start = 0;
+  while (start <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', start), list.size());
+    if (comma > start) items.push_back(list.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return items;
+}
+
+bool Selected(const std::vector<std::string>& selection, const std::string& name) {
+  return selection.empty() || std::find(selection.begin(), selection.end(), name) != selection.end();
+}
+
 }  // namespace
 }  // namespace rigid_body_sim::bench
 
@@ -234,16 +269,30 @@ int main(int argc, char** argv) {
   using namespace rigid_body_sim::core;
   using namespace rigid_body_sim::bench;
   std::string output = "bench/results/work_precision.csv";
-  bool quick = false;
+  bool quick = false, ours_only = false;
+  std::vector<std::string> scene_names, method_names, dt_texts;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    const bool has_value = i + 1 < argc;
     if (arg == "--quick") quick = true;
+    else if (arg == "--ours") ours_only = true;
+    else if (arg == "--scenes" && has_value) scene_names = SplitList(argv[++i]);
+    else if (arg == "--methods" && has_value) method_names = SplitList(argv[++i]);
+    else if (arg == "--dts" && has_value) dt_texts = SplitList(argv[++i]);
     else output = arg;
   }
-  const std::vector<double> dts = quick ? std::vector<double>{1e-2, 1e-3}
-                                        : std::vector<double>{1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5};
+  // Half decades from 0.3 s down to 30 µs: the large steps are where the
+  // high-order schemes reach 1e-6 rad at the least CPU per simulated second.
+  std::vector<double> dts = quick ? std::vector<double>{1e-2, 1e-3}
+                                  : std::vector<double>{3e-1, 1e-1, 3e-2, 1e-2, 3e-3,
+                                                        1e-3, 3e-4, 1e-4, 3e-5};
+  if (!dt_texts.empty()) {
+    dts.clear();
+    for (const std::string& text : dt_texts) dts.push_back(std::stod(text));
+  }
   std::vector<std::string> missing;
-  std::vector<std::unique_ptr<Peer>> peers = MakePeers(&missing);
+  std::vector<std::unique_ptr<Peer>> peers;
+  if (!ours_only) peers = MakePeers(&missing);
   for (const std::string& name : missing) std::cerr << "work_precision: skipping " << name << "\n";
 
   std::ofstream csv(output);
@@ -254,6 +303,7 @@ int main(int argc, char** argv) {
   csv << "scene,engine,method,dt_s,orientation_error_rad,position_error_m,energy_rel_error,"
          "momentum_rel_error,ns_per_body_step,flips,first_flip_error_s\n";
   for (const Scene& scene : WorkPrecisionScenes()) {
+    if (!Selected(scene_names, scene.name)) continue;
     const BodyModel model(scene.name, scene.particles);
     const Reference reference = MakeReference(scene, model, dts);
     std::cerr << scene.name << ": reference error estimate " << reference.own_error_rad << " rad\n";
@@ -263,6 +313,7 @@ int main(int argc, char** argv) {
       const BodyState& expected = reference.at_end[d];
       const long timed_steps = std::min<long>(100, StepCount(scene, dt));
       for (const std::string& name : IntegratorNames()) {
+        if (!Selected(method_names, name)) continue;
         FlipCounter flips;
         const BodyState final_state = RunOurs(scene, model, name, dt, track_flips ? &flips : nullptr);
         const double ns = TimeOurs(scene, model, name, dt, timed_steps);
@@ -279,8 +330,8 @@ int main(int argc, char** argv) {
           if (track_flips) flips.Observe(peer->State(0), (n + 1) * dt, dt);
         }
         const PeerState final_state = peer->State(0);
-        peer->Setup(scene, kTimedBodies, dt);
-        const double ns = TimePerBodyStep(timed_steps, [&](int) { peer->Step(); });
+        const double ns = TimePerBodyStep(
+            timed_steps, [&] { peer->Setup(scene, kTimedBodies, dt); }, [&](long) { peer->Step(); });
         const std::string full = peer->name();
         const std::string engine = full.substr(0, full.find('_'));
         WriteRow(csv, scene, engine, full, dt, Compare(model, final_state, expected), ns,

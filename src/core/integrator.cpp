@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "rigid_body_sim/core/integrators/casimir_rkn4.h"
+#include "rigid_body_sim/core/integrators/casimir_rkn6.h"
 #include "rigid_body_sim/core/integrators/casimir_splitting.h"
 #include "rigid_body_sim/core/integrators/casimir_splitting4.h"
 #include "rigid_body_sim/core/integrators/euler.h"
@@ -60,6 +62,12 @@ const std::vector<IntegratorInfo>& IntegratorTable() {
        Make<CasimirSplittingIntegrator>},
       {"exact_free", 2, "exact torque-free flow (Jacobi elliptic functions) between half kicks",
        Make<ExactFreeIntegrator>},
+      {"casimir_rkn4", 4,
+       "Blanes-Moan 6-stage free rotation; with loads, McLachlan's 4-kick Runge-Kutta-Nystrom step",
+       Make<CasimirRkn4Integrator>},
+      {"casimir_rkn6", 6,
+       "Blanes-Moan 10-stage free rotation; with loads, Okunbor-Skeel's 7-kick Runge-Kutta-Nystrom step",
+       Make<CasimirRkn6Integrator>},
   };
   return table;
 }

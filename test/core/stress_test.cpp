@@ -7,9 +7,10 @@
 // What is asserted of whom. Every scheme: the state stays finite with a unit
 // quaternion after every step, A = R(q) orthonormal, the World keeps L in the
 // range of I. The symplectic splittings (splitting, splitting4,
-// casimir_splitting, casimir_splitting4, order p = integrator->order()): the
-// relative energy error stays below (h|ω|)^p / 12 and does not grow between
-// the first and the second half of a run covering >= 10 periods of Π(t).
+// casimir_splitting, casimir_splitting4, casimir_rkn4, casimir_rkn6, order
+// p = integrator->order()): the relative energy error stays below
+// (h|ω|)^p / 12 and does not grow between the first and the second half of a
+// run covering >= 10 periods of Π(t).
 // exact_free: energy and orientation exact to round-off. euler,
 // symplectic_euler and rk4 legitimately lose the energy at large h|ω|; for
 // them only finiteness is asserted and the errors are printed.
@@ -45,7 +46,7 @@ constexpr double kDt = 1e-3;
 
 bool IsSymplecticSplitting(const std::string& name) {
   return name == "splitting" || name == "splitting4" || name == "casimir_splitting" ||
-         name == "casimir_splitting4";
+         name == "casimir_splitting4" || name == "casimir_rkn4" || name == "casimir_rkn6";
 }
 bool IsExact(const std::string& name) { return name == "exact_free"; }
 
