@@ -20,6 +20,7 @@ void HeldLoads::Clear() {
   torque_body_.setZero();
   force_moment_.setZero();
   has_torque_ = false;
+  has_body_axes_ = false;
 }
 
 void HeldLoads::AddWorldForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset) {
@@ -34,6 +35,7 @@ void HeldLoads::AddBodyForce(const Eigen::Vector3d& force, const Eigen::Vector3d
   force_body_ += force;
   torque_body_ += offset.cross(force);
   has_torque_ = true;
+  has_body_axes_ = true;
 }
 
 void HeldLoads::AddWorldCouple(const Eigen::Vector3d& couple) {
@@ -46,6 +48,7 @@ void HeldLoads::AddBodyCouple(const Eigen::Vector3d& couple) {
   torque_bound_ = -1.0;
   torque_body_ += couple;
   has_torque_ = true;
+  has_body_axes_ = true;
 }
 
 void HeldLoads::AddCentralForce(const Eigen::Vector3d& force) { force_world_ += force; }
@@ -63,14 +66,12 @@ double HeldLoads::DroppedTorque(const Eigen::Matrix3d& rotation) const {
   return (torque_body - torque_projector_ * torque_body).norm();
 }
 
-double HeldLoads::TorqueBound() const {
-  if (!has_torque_) return 0.0;
+double HeldLoads::NewTorqueBound() const {
   // |vee(C Aᵀ − A Cᵀ)| <= 2 ‖C‖₂, and sums of magnitudes bound the 2-norms
   // without a square root.
-  if (torque_bound_ < 0.0) {
-    torque_bound_ = torque_world_.lpNorm<1>() + torque_body_.lpNorm<1>() +
-                    2.0 * force_moment_.cwiseAbs().sum();
-  }
+  torque_bound_ = has_torque_ ? torque_world_.lpNorm<1>() + torque_body_.lpNorm<1>() +
+                                    2.0 * force_moment_.cwiseAbs().sum()
+                              : 0.0;
   return torque_bound_;
 }
 

@@ -2,8 +2,7 @@
 
 #include <stdexcept>
 
-#include "rigid_body_sim/core/integrators/casimir_rkn4.h"
-#include "rigid_body_sim/core/integrators/casimir_rkn6.h"
+#include "rigid_body_sim/core/integrators/casimir_rkn.h"
 #include "rigid_body_sim/core/integrators/casimir_splitting.h"
 #include "rigid_body_sim/core/integrators/casimir_splitting4.h"
 #include "rigid_body_sim/core/integrators/euler.h"
@@ -64,10 +63,10 @@ const std::vector<IntegratorInfo>& IntegratorTable() {
        Make<ExactFreeIntegrator>},
       {"casimir_rkn4", 4,
        "Blanes-Moan 6-stage free rotation; with loads, McLachlan's 4-kick Runge-Kutta-Nystrom step",
-       Make<CasimirRkn4Integrator>},
+       Make<CasimirRknIntegrator<4>>},
       {"casimir_rkn6", 6,
        "Blanes-Moan 10-stage free rotation; with loads, Okunbor-Skeel's 7-kick Runge-Kutta-Nystrom step",
-       Make<CasimirRkn6Integrator>},
+       Make<CasimirRknIntegrator<6>>},
   };
   return table;
 }

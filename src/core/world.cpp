@@ -125,17 +125,20 @@ std::uint32_t World::SubstepsFor(std::size_t body, const BodyState& state) const
 }
 
 void World::Step() {
-  wrenches_.Reduce(time(), options_.wrench_timeout_s, kTimeToleranceInSteps * options_.dt_s,
-                   models_, &loads_, &loaded_);
+  const bool loads_changed = wrenches_.Reduce(time(), options_.wrench_timeout_s,
+                                              kTimeToleranceInSteps * options_.dt_s, models_,
+                                              &loads_, &loaded_);
+  if (loads_changed && has_gravity_) {
+    for (std::size_t i = 0; i < models_.size(); ++i) {
+      loads_[i].AddCentralForce(models_[i].mass() * options_.gravity);
+      loaded_[i] = 1;
+    }
+  }
   last_step_substeps_max_ = 1;
   for (std::size_t i = 0; i < models_.size(); ++i) {
     if (faults_[i] != BodyFault::kNone) continue;
     const BodyModel& model = models_[i];
     BodyState& state = states_[i];
-    if (has_gravity_) {
-      loads_[i].AddCentralForce(model.mass() * options_.gravity);
-      loaded_[i] = 1;
-    }
     if (!loaded_[i] && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
       continue;  // at rest and unloaded: nothing can move it, so skip the scheme
     }

@@ -84,8 +84,9 @@ TEST_P(EveryScheme, StepFreeOfABatchIsStepBodyByBody) {
 
 TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
   // The same bodies under gravity and held particle forces and couples in
-  // world and body axes: the World's batches against Step with the same
-  // loads, body by body.
+  // world and body axes, every fifth under gravity alone (a constant force:
+  // the free lanes): the World's batches against Step with the same loads,
+  // body by body.
   const double dt = 1e-3;
   WorldOptions options;
   options.integrator = GetParam();
@@ -95,6 +96,8 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
   World world(free_world.models(), free_world.states(), options);
   std::vector<HeldLoads> loads(world.size());
   for (std::size_t i = 0; i < world.size(); ++i) {
+    loads[i].AddCentralForce(world.model(i).mass() * options.gravity);
+    if (i % 5 == 4) continue;
     ParticleWrench push;
     push.body = i;
     push.particle = i % world.model(i).particle_count();
@@ -110,7 +113,6 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
       loads[i].AddWorldForce(push.force, offset);
       loads[i].AddWorldCouple(push.couple);
     }
-    loads[i].AddCentralForce(world.model(i).mass() * options.gravity);
   }
   world.Step();  // from here on SubstepsFor sees the held loads
   std::vector<BodyState> expected = world.states();

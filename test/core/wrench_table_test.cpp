@@ -84,5 +84,58 @@ TEST_F(WrenchTableTest, WithoutTimeoutHeldUntilCleared) {
   EXPECT_FALSE(loaded_[1]);
 }
 
+TEST_F(WrenchTableTest, KeptSumsEqualSumsFromScratchAtEveryStep) {
+  // Wrenches starting and expiring at random steps, some replaced on the
+  // way: at every step the table that keeps its sums between changes gives
+  // the same loads, bit for bit, as a table summing from scratch, and it sums
+  // anew only when a wrench starts, expires or is held.
+  const double dt = 1e-3, timeout = 0.02;
+  std::mt19937 rng(5);
+  std::uniform_int_distribution<int> step_of(0, 60);
+  std::normal_distribution<double> n(0.0, 1.0);
+  std::vector<ParticleWrench> wrenches;
+  for (int k = 0; k < 7; ++k) {  // one per particle of the two bodies
+    ParticleWrench w = WorldForce(k < 4 ? 0 : 1, k < 4 ? k : k - 4,
+                                  Eigen::Vector3d(n(rng), n(rng), n(rng)), step_of(rng) * dt);
+    w.axes = k % 4 < 2 ? WrenchAxes::kWorld : WrenchAxes::kBody;
+    w.couple = Eigen::Vector3d(n(rng), n(rng), n(rng));
+    wrenches.push_back(w);
+  }
+  const int hold_again_at = 30;  // wrenches[0] once more, from then on
+  for (const ParticleWrench& w : wrenches) table_.Hold(w);
+  const Eigen::Matrix3d a =
+      Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+  int sums = 0;
+  for (int step = 0; step <= 100; ++step) {
+    const double t = step * dt;
+    ParticleWrench again = wrenches[0];
+    again.start_s = hold_again_at * dt;
+    if (step == hold_again_at) table_.Hold(again);
+    sums += table_.Reduce(t, timeout, 1e-9, models_, &loads_, &loaded_);
+
+    WrenchTable scratch({4, 3});
+    // What the table still holds: every wrench until it expires (the same
+    // comparison as Reduce's), wrenches[0] replaced by `again` from its hold.
+    const auto held = [&](const ParticleWrench& w) { return !(t > w.start_s + timeout - 1e-9); };
+    for (std::size_t k = step >= hold_again_at ? 1 : 0; k < wrenches.size(); ++k) {
+      if (held(wrenches[k])) scratch.Hold(wrenches[k]);
+    }
+    if (step >= hold_again_at && held(again)) scratch.Hold(again);
+    std::vector<HeldLoads> expected(2);
+    std::vector<char> expected_loaded(2, 0);
+    scratch.Reduce(t, timeout, 1e-9, models_, &expected, &expected_loaded);
+    for (std::size_t body = 0; body < 2; ++body) {
+      SCOPED_TRACE("step " + std::to_string(step) + ", body " + std::to_string(body));
+      ASSERT_EQ(loaded_[body], expected_loaded[body]);
+      if (!loaded_[body]) continue;
+      const Wrench kept = loads_[body].At(0.0, a), fresh = expected[body].At(0.0, a);
+      EXPECT_EQ(kept.force, fresh.force);
+      EXPECT_EQ(kept.torque, fresh.torque);
+    }
+  }
+  // Once per change at most: 8 starts, 8 expiries, the second hold and the first call.
+  EXPECT_LE(sums, 18);
+}
+
 }  // namespace
 }  // namespace rigid_body_sim::core

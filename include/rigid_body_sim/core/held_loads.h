@@ -32,7 +32,7 @@ class HeldLoads final : public Load {
   double DroppedTorque(const Eigen::Matrix3d& rotation) const;
 
   // An upper bound on |τ| at any orientation [N m].
-  double TorqueBound() const;
+  double TorqueBound() const { return torque_bound_ >= 0.0 ? torque_bound_ : NewTorqueBound(); }
   // How fast the wrench turns when the body turns at ω (world) [rad/s]:
   // |dF/dt| and |dτ/dt| over the bounds of |F| and |τ|, the larger. Zero for
   // loads that do not depend on the orientation (world forces at the COM,
@@ -41,6 +41,8 @@ class HeldLoads final : public Load {
 
   Wrench At(double time_in_step_s, const Eigen::Matrix3d& rotation) const override;
   bool has_torque() const override { return has_torque_; }
+  // Whether a body-axes force or couple was added.
+  bool has_body_axes() const { return has_body_axes_; }
 
   // The reduced parts, for kernels that evaluate At themselves.
   const Eigen::Vector3d& force_world() const { return force_world_; }
@@ -50,6 +52,8 @@ class HeldLoads final : public Load {
   const Eigen::Matrix3d& force_moment() const { return force_moment_; }
 
  private:
+  // Computes TorqueBound and keeps it until the loads change.
+  double NewTorqueBound() const;
   Eigen::Vector3d force_world_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d force_body_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque_world_ = Eigen::Vector3d::Zero();
@@ -58,6 +62,7 @@ class HeldLoads final : public Load {
   Eigen::Matrix3d torque_projector_ = Eigen::Matrix3d::Identity();
   mutable double torque_bound_ = -1.0;  // TorqueBound, once asked; < 0: not yet
   bool has_torque_ = false;
+  bool has_body_axes_ = false;
   bool projects_torque_ = false;
 };
 

@@ -108,7 +108,8 @@ class World {
   WorldOptions options_;
   std::unique_ptr<Integrator> integrator_;
   WrenchTable wrenches_;
-  // This step's loads (held wrenches and gravity) of the bodies with loaded_ set.
+  // This step's loads (held wrenches and gravity) of the bodies with loaded_
+  // set, summed again only when WrenchTable::Reduce finds them changed.
   std::vector<HeldLoads> loads_;
   std::vector<char> loaded_;
   std::vector<BodyFault> faults_;

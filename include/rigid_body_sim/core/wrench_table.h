@@ -43,7 +43,11 @@ class WrenchTable {
   // sets loaded[b]; others are left cleared. Expired wrenches are dropped.
   // Times closer than tolerance_s count as equal, so that a stamp computed
   // as t_0 + n·dt elsewhere lands on step n despite round-off.
-  void Reduce(double t_s, double timeout_s, double tolerance_s,
+  // Held wrenches rarely change between steps: when nothing was held or
+  // cleared since the last call and no wrench starts or expires by t_s, the
+  // loads of that call still hold and are left alone. Returns whether the
+  // loads were summed anew.
+  bool Reduce(double t_s, double timeout_s, double tolerance_s,
               const std::vector<BodyModel>& models, std::vector<HeldLoads>* loads,
               std::vector<char>* loaded);
 
@@ -54,6 +58,14 @@ class WrenchTable {
   std::vector<std::size_t> particle_counts_;
   std::vector<ParticleWrench> entries_;                   // in order of arrival
   std::unordered_map<std::uint64_t, std::size_t> index_;  // key → position in entries_
+  // What the last Reduce summed holds until a Hold or Clear, a change of
+  // timeout or tolerance, the earliest start of a wrench not yet active and
+  // the earliest expiry (start + timeout − tolerance) of one that is.
+  bool reduced_ = false;
+  double reduced_timeout_s_ = 0.0;
+  double reduced_tolerance_s_ = 0.0;
+  double next_start_s_ = 0.0;
+  double next_expiry_s_ = 0.0;
 };
 
 }  // namespace rigid_body_sim::core

@@ -1,23 +1,28 @@
-// The torque-free `casimir_splitting4` step for kFreeLanes bodies at once.
+// The torque-free step of the Casimir schemes for kLanes bodies at once.
 // The bodies sit in structure-of-arrays form and one loop over the lanes holds
 // the whole step, without branches or calls, so the compiler runs the lanes
 // in SIMD registers (AVX-512, AVX2 or SSE2, picked when the program loads).
 #pragma once
 
 #include <cstddef>
+#include <vector>
 
 #include "casimir_step.h"
+#include "compositions.h"
+#include "lane_math.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 
 namespace rigid_body_sim::core {
 
-constexpr std::size_t kFreeLanes = 8;
+// Bodies a lane kernel steps at once.
+constexpr std::size_t kLanes = 8;
 
 // Whether a body may take the lanes: dt·|L|·max_k(1/λ_k) <= 1/16, so that
-// every half-angle of its step is below 1/16 (the triple jump's longest
-// sub-step is 1.70 dt), where SinCosSmall's series is exact to round-off.
-// Then |ω|·dt is far below π.
+// every half-angle of its step is below 1/16 (no sub-step of the schemes'
+// compositions is longer than 2 dt, and each turns by at most half its
+// length times |L|·max_k(1/λ_k)), where SinCosSmall's series is exact to
+// round-off. Then |ω|·dt is far below π.
 inline bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double dt_s) {
   constexpr double kMaxTurn = 1.0 / 16;
   const double turn_rate = dt_s * model.inverse_principal_moments().maxCoeff();
@@ -25,27 +30,61 @@ inline bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double
   return turn_rate * turn_rate * state.angular_momentum.squaredNorm() <= kMaxTurn * kMaxTurn;
 }
 
-struct FreeLanes {
+// What every lane kernel reads of kLanes bodies, in structure-of-arrays form.
+struct LaneBodies {
   // State: x_CM, q body → world (x, y, z, w), p and L, world.
-  double position[3][kFreeLanes] = {};
-  double orientation[4][kFreeLanes] = {};
-  double linear_momentum[3][kFreeLanes] = {};
-  double angular_momentum[3][kFreeLanes] = {};
+  double position[3][kLanes];
+  double orientation[4][kLanes];
+  double linear_momentum[3][kLanes];
+  double angular_momentum[3][kLanes];
   // Model: body → principal rotation (x, y, z, w), M and the Casimir split.
-  double principal_axes[4][kFreeLanes] = {};
-  double mass[kFreeLanes] = {};
-  double casimir[kFreeLanes] = {};
-  double axis1[kFreeLanes] = {};
-  double axis3[kFreeLanes] = {};
-
-  // Every lane an unloaded 1 kg body at rest: lanes left idle in a last,
-  // partly filled block compute on finite numbers (results not stored).
-  FreeLanes();
+  double principal_axes[4][kLanes];
+  double mass[kLanes];
+  double casimir[kLanes];
+  double axis1[kLanes];
+  double axis3[kLanes];
 
   // Copies body `model` in `state` into `lane`.
   void Load(std::size_t lane, const BodyModel& model, const BodyState& state) {
-    LoadLane(lane, model, state, this);
+    for (int k = 0; k < 3; ++k) {
+      position[k][lane] = state.position[k];
+      linear_momentum[k][lane] = state.linear_momentum[k];
+      angular_momentum[k][lane] = state.angular_momentum[k];
+    }
+    for (int k = 0; k < 4; ++k) {
+      orientation[k][lane] = state.orientation.coeffs()[k];
+      principal_axes[k][lane] = model.principal_axes().coeffs()[k];
+    }
+    const CasimirSplit split(model);
+    mass[lane] = model.mass();
+    casimir[lane] = split.casimir;
+    axis1[lane] = split.axis1;
+    axis3[lane] = split.axis3;
   }
+
+  // Makes every lane from `first` on an unloaded 1 kg sphere at rest, so
+  // that the idle lanes of a last, partly filled block compute on finite
+  // numbers.
+  void FillIdle(std::size_t first) {
+    for (std::size_t lane = first; lane < kLanes; ++lane) {
+      for (int k = 0; k < 3; ++k) {
+        position[k][lane] = 0.0;
+        linear_momentum[k][lane] = 0.0;
+        angular_momentum[k][lane] = 0.0;
+      }
+      for (int k = 0; k < 4; ++k) {
+        orientation[k][lane] = k == 3 ? 1.0 : 0.0;
+        principal_axes[k][lane] = k == 3 ? 1.0 : 0.0;
+      }
+      mass[lane] = 1.0;
+      casimir[lane] = 0.0;
+      axis1[lane] = 0.0;
+      axis3[lane] = 0.0;
+    }
+  }
+};
+
+struct FreeLanes : LaneBodies {
   // Writes the lane's position and orientation (the only parts a free step
   // changes) to `state`.
   void Store(std::size_t lane, BodyState* state) const {
@@ -54,7 +93,74 @@ struct FreeLanes {
   }
 };
 
-// Advances every lane by h; the bodies in use must fit (FitsFreeLanes).
-void CasimirFreeStep4(double h, FreeLanes* lanes);
+// FreeCompositionStep (compositions.h) lane by lane: drift, Π = q_WPᵀ L, the
+// axis flows of `splitting`, the rotation about L by c|L|h, back to the body
+// frame. The bodies in use must fit (FitsFreeLanes).
+template <std::size_t n>
+inline __attribute__((always_inline)) void CompositionFreeLanes(const AxisSplitting<n>& splitting,
+                                                                 double h, FreeLanes* lanes) {
+  using lanes::Quaternion;
+  FreeLanes& b = *lanes;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    const double drift = h * (1.0 / b.mass[l]);
+    for (int k = 0; k < 3; ++k) b.position[k][l] += drift * b.linear_momentum[k][l];
+
+    const Quaternion axes{b.principal_axes[0][l], b.principal_axes[1][l], b.principal_axes[2][l],
+                          b.principal_axes[3][l]};
+    Quaternion q = lanes::Multiply(Quaternion{b.orientation[0][l], b.orientation[1][l],
+                                              b.orientation[2][l], b.orientation[3][l]},
+                                   axes);
+    const double lx = b.angular_momentum[0][l], ly = b.angular_momentum[1][l],
+                 lz = b.angular_momentum[2][l];
+    double m[3];  // Π = R(q)ᵀ L
+    lanes::RotateInverse(q, lx, ly, lz, m);
+
+    const double a1 = b.axis1[l], a3 = b.axis3[l];
+#pragma GCC unroll 16
+    for (std::size_t i = 0; i < n; ++i) {
+      lanes::Axis1Flow(a1, splitting.axis1[i] * h, m, &q);
+      lanes::Axis3Flow(a3, splitting.axis3[i] * h, m, &q);
+    }
+    lanes::Axis1Flow(a1, splitting.axis1[n] * h, m, &q);
+
+    const double turn = h * b.casimir[l];
+    q = lanes::Multiply(lanes::ExpMapSmall(turn * lx, turn * ly, turn * lz), q);
+    q = lanes::Normalized(lanes::Multiply(q, Quaternion{-axes.x, -axes.y, -axes.z, axes.w}));
+    b.orientation[0][l] = q.x;
+    b.orientation[1][l] = q.y;
+    b.orientation[2][l] = q.z;
+    b.orientation[3][l] = q.w;
+  }
+}
+
+// Integrator::StepFree through the lanes: bodies that fit go kLanes at a
+// time through `step_lanes(dt_s, lanes)`, the others through
+// `step_one(model, dt_s, state)`.
+template <typename StepLanes, typename StepOne>
+void StepFreeInLanes(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
+                     double dt_s, std::vector<BodyState>* states, StepLanes step_lanes,
+                     StepOne step_one) {
+  FreeLanes lanes;
+  std::size_t lane_bodies[kLanes];
+  std::size_t filled = 0;
+  const auto flush = [&] {
+    if (filled < kLanes) lanes.FillIdle(filled);
+    step_lanes(dt_s, &lanes);
+    for (std::size_t l = 0; l < filled; ++l) lanes.Store(l, &(*states)[lane_bodies[l]]);
+    filled = 0;
+  };
+  for (const std::size_t body : bodies) {
+    const BodyModel& model = models[body];
+    BodyState& state = (*states)[body];
+    if (!FitsFreeLanes(model, state, dt_s)) {
+      step_one(model, dt_s, &state);  // too fast for the lanes' series
+      continue;
+    }
+    lanes.Load(filled, model, state);
+    lane_bodies[filled++] = body;
+    if (filled == kLanes) flush();
+  }
+  if (filled > 0) flush();
+}
 
 }  // namespace rigid_body_sim::core

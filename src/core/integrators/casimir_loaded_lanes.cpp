@@ -1,6 +1,5 @@
 #include "casimir_loaded_lanes.h"
 
-#include "lane_math.h"
 #include "step_parts.h"
 
 namespace rigid_body_sim::core {
@@ -8,23 +7,30 @@ namespace rigid_body_sim::core {
 using lanes::ExpMapSmall;
 using lanes::Quaternion;
 
-LoadedLanes::LoadedLanes() {
-  for (std::size_t l = 0; l < kLoadedLanes; ++l) {
-    orientation[3][l] = 1.0;
-    principal_axes[3][l] = 1.0;
-    mass[l] = 1.0;
+void LoadedLanes::FillIdle(std::size_t first) {
+  LaneBodies::FillIdle(first);
+  for (std::size_t l = first; l < kLanes; ++l) {
+    for (int k = 0; k < 3; ++k) {
+      force_world[k][l] = 0.0;
+      force_body[k][l] = 0.0;
+      torque_world[k][l] = 0.0;
+      torque_body[k][l] = 0.0;
+    }
+    for (int k = 0; k < 9; ++k) moment[k][l] = 0.0;
   }
 }
 
 void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const BodyState& state,
                        const HeldLoads& loads) {
-  LoadLane(lane, model, state, this);
+  LaneBodies::Load(lane, model, state);
+  body_axes = body_axes || loads.has_body_axes();
+  const double* moment_entries = loads.force_moment().data();  // column-major
   for (int k = 0; k < 3; ++k) {
     force_world[k][lane] = loads.force_world()[k];
     force_body[k][lane] = loads.force_body()[k];
     torque_world[k][lane] = loads.torque_world()[k];
     torque_body[k][lane] = loads.torque_body()[k];
-    for (int j = 0; j < 3; ++j) moment[3 * k + j][lane] = loads.force_moment()(k, j);
+    for (int j = 0; j < 3; ++j) moment[3 * k + j][lane] = moment_entries[k + 3 * j];
   }
 }
 
@@ -37,17 +43,22 @@ void LoadedLanes::Store(std::size_t lane, BodyState* state) const {
   for (int k = 0; k < 4; ++k) state->orientation.coeffs()[k] = orientation[k][lane];
 }
 
+namespace {
+
 // The loaded Step of casimir_splitting4.cpp, lane by lane, in the principal
-// frame throughout: kick, then three times drift, B C B, the rotation about L
+// frame throughout: kick, then three times drift, A B A, the rotation about L
 // and a kick, with neighbouring half kicks merged (they act at the same pose
-// and time).
-RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
+// and time). kBodyAxes: whether any lane holds a body-axes force or couple
+// (without, their terms are left out). q stays a unit quaternion to ~1e-16
+// through the products, so it is normalised once, at the end.
+template <bool kBodyAxes>
+inline __attribute__((always_inline)) void LoadedStep4(double h, LoadedLanes* lanes) {
   LoadedLanes& b = *lanes;
   const double outer = kYoshidaOuterWeight * h;
   const double inner = kYoshidaInnerWeight * h;
   const double substeps[3] = {outer, inner, outer};
   const double kicks[4] = {0.5 * outer, 0.5 * (outer + inner), 0.5 * (inner + outer), 0.5 * outer};
-  for (std::size_t l = 0; l < kLoadedLanes; ++l) {
+  for (std::size_t l = 0; l < kLanes; ++l) {
     const Quaternion axes{b.principal_axes[0][l], b.principal_axes[1][l], b.principal_axes[2][l],
                           b.principal_axes[3][l]};
     Quaternion q = Multiply(Quaternion{b.orientation[0][l], b.orientation[1][l], b.orientation[2][l],
@@ -57,15 +68,17 @@ RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
     // R_BPᵀ τ_B and C_P = C R_BP, so that R_WB = R_WP R_BPᵀ never appears.
     double r[9];
     lanes::RotationMatrix(axes, r);
-    double x[3], p[3], lw[3], fw[3], fp[3], tw[3], tp[3], c[9];
+    double x[3], p[3], lw[3], fw[3], fp[3] = {}, tw[3], tp[3] = {}, c[9];
     for (int k = 0; k < 3; ++k) {
       x[k] = b.position[k][l];
       p[k] = b.linear_momentum[k][l];
       lw[k] = b.angular_momentum[k][l];
       fw[k] = b.force_world[k][l];
       tw[k] = b.torque_world[k][l];
-      fp[k] = r[k] * b.force_body[0][l] + r[3 + k] * b.force_body[1][l] + r[6 + k] * b.force_body[2][l];
-      tp[k] = r[k] * b.torque_body[0][l] + r[3 + k] * b.torque_body[1][l] + r[6 + k] * b.torque_body[2][l];
+      if constexpr (kBodyAxes) {
+        fp[k] = r[k] * b.force_body[0][l] + r[3 + k] * b.force_body[1][l] + r[6 + k] * b.force_body[2][l];
+        tp[k] = r[k] * b.torque_body[0][l] + r[3 + k] * b.torque_body[1][l] + r[6 + k] * b.torque_body[2][l];
+      }
     }
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
@@ -84,9 +97,11 @@ RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
       const auto m = [&](int i, int j) { return c[3 * i] * a[3 * j] + c[3 * i + 1] * a[3 * j + 1] + c[3 * i + 2] * a[3 * j + 2]; };
       const double moment_torque[3] = {m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1)};
       for (int k = 0; k < 3; ++k) {
-        const double force = fw[k] + a[3 * k] * fp[0] + a[3 * k + 1] * fp[1] + a[3 * k + 2] * fp[2];
-        const double torque =
-            tw[k] + a[3 * k] * tp[0] + a[3 * k + 1] * tp[1] + a[3 * k + 2] * tp[2] + moment_torque[k];
+        double force = fw[k], torque = tw[k] + moment_torque[k];
+        if constexpr (kBodyAxes) {
+          force += a[3 * k] * fp[0] + a[3 * k + 1] * fp[1] + a[3 * k + 2] * fp[2];
+          torque += a[3 * k] * tp[0] + a[3 * k + 1] * tp[1] + a[3 * k + 2] * tp[2];
+        }
         p[k] += w * force;
         lw[k] += w * torque;
       }
@@ -102,7 +117,7 @@ RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
       Axis3Flow(a3, sub, m, &q);
       Axis1Flow(a1, 0.5 * sub, m, &q);
       const double turn = sub * casimir;
-      q = lanes::Normalized(Multiply(ExpMapSmall(turn * lw[0], turn * lw[1], turn * lw[2]), q));
+      q = Multiply(ExpMapSmall(turn * lw[0], turn * lw[1], turn * lw[2]), q);
       kick(kicks[s + 1]);
     }
 
@@ -117,6 +132,17 @@ RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
     b.orientation[2][l] = q.z;
     b.orientation[3][l] = q.w;
   }
+}
+
+}  // namespace
+
+RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
+  if (lanes->body_axes) {
+    LoadedStep4<true>(h, lanes);
+  } else {
+    LoadedStep4<false>(h, lanes);
+  }
+  lanes->body_axes = false;
 }
 
 }  // namespace rigid_body_sim::core

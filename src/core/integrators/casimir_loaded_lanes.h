@@ -1,19 +1,20 @@
-// The loaded `casimir_splitting4` step for kLoadedLanes bodies at once: the
+// The loaded `casimir_splitting4` step for kLanes bodies at once: the
 // triple jump of kick–drift–rotate–kick steps with the held wrenches
 // (HeldLoads) evaluated in the lanes, one loop over the lanes without
 // branches or calls, as casimir_free_lanes.h does for free bodies.
 #pragma once
 
 #include <cstddef>
+#include <type_traits>
+#include <vector>
 
+#include "casimir_free_lanes.h"
 #include "casimir_step.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
 
 namespace rigid_body_sim::core {
-
-constexpr std::size_t kLoadedLanes = 8;
 
 // Whether a loaded body may take the lanes: every half-angle of its step,
 // with L grown by at most dt times the load's torque bound, stays below 1/16
@@ -29,35 +30,86 @@ inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, cons
   return turn * turn * 2.0 * (state.angular_momentum.squaredNorm() + kick * kick) <= kMaxTurn * kMaxTurn;
 }
 
-struct LoadedLanes {
-  // State: x_CM, q body → world (x, y, z, w), p and L, world.
-  double position[3][kLoadedLanes] = {};
-  double orientation[4][kLoadedLanes] = {};
-  double linear_momentum[3][kLoadedLanes] = {};
-  double angular_momentum[3][kLoadedLanes] = {};
-  // Model: body → principal rotation (x, y, z, w), M and the Casimir split.
-  double principal_axes[4][kLoadedLanes] = {};
-  double mass[kLoadedLanes] = {};
-  double casimir[kLoadedLanes] = {};
-  double axis1[kLoadedLanes] = {};
-  double axis3[kLoadedLanes] = {};
+struct LoadedLanes : LaneBodies {
   // Load (HeldLoads): F = F_W + R_WB F_B, τ = τ_W + R_WB τ_B + vee(C R_WBᵀ − R_WB Cᵀ);
   // the kernel turns the body-axes parts into the principal frame itself.
-  double force_world[3][kLoadedLanes] = {};
-  double force_body[3][kLoadedLanes] = {};
-  double torque_world[3][kLoadedLanes] = {};
-  double torque_body[3][kLoadedLanes] = {};
-  double moment[9][kLoadedLanes] = {};  // C = Σ f_i r̄_iᵀ, row-major
-
-  // Every lane an unloaded 1 kg body at rest.
-  LoadedLanes();
+  double force_world[3][kLanes];
+  double force_body[3][kLanes];
+  double torque_world[3][kLanes];
+  double torque_body[3][kLanes];
+  double moment[9][kLanes];  // C = Σ f_i r̄_iᵀ, row-major
+  // Whether a lane loaded since the last step holds a body-axes force or couple.
+  bool body_axes = false;
 
   void Load(std::size_t lane, const BodyModel& model, const BodyState& state, const HeldLoads& loads);
+  // LaneBodies::FillIdle with no load.
+  void FillIdle(std::size_t first);
   // Writes the lane's state to `state`.
   void Store(std::size_t lane, BodyState* state) const;
 };
 
 // Advances every lane by h; the bodies in use must fit (FitsLoadedLanes).
+// Clears body_axes.
 void CasimirLoadedStep4(double h, LoadedLanes* lanes);
+
+// Integrator::StepLoaded through the lanes. A body whose load is a constant
+// world force F at the COM (gravity alone) turns as a free body while its
+// COM moves exactly as x += h p/M + h² F/(2M), p += h F, which is what every
+// scheme exact for constant forces gives: it takes `free_lanes(dt_s, lanes)`
+// and then the rest of that motion. Other bodies that fit take
+// `loaded_lanes(dt_s, lanes)` (nullptr: a scheme without them), the rest
+// `step_one(model, load, dt_s, state)`.
+template <typename FreeKernel, typename LoadedKernel, typename StepOne>
+void StepLoadedInLanes(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
+                       const std::vector<HeldLoads>& loads, double dt_s,
+                       std::vector<BodyState>* states, FreeKernel free_lanes,
+                       LoadedKernel loaded_lanes, StepOne step_one) {
+  constexpr bool kHasLoadedLanes = !std::is_same_v<LoadedKernel, std::nullptr_t>;
+  FreeLanes pulled;  // bodies under a constant force
+  std::size_t pulled_bodies[kLanes];
+  std::size_t pulled_count = 0;
+  const auto flush_pulled = [&] {
+    if (pulled_count < kLanes) pulled.FillIdle(pulled_count);
+    free_lanes(dt_s, &pulled);
+    for (std::size_t l = 0; l < pulled_count; ++l) {
+      const std::size_t body = pulled_bodies[l];
+      BodyState& state = (*states)[body];
+      pulled.Store(l, &state);
+      const Eigen::Vector3d impulse = dt_s * loads[body].force_world();
+      state.position += (0.5 * dt_s * models[body].inverse_mass()) * impulse;
+      state.linear_momentum += impulse;
+    }
+    pulled_count = 0;
+  };
+  LoadedLanes turned;  // bodies under a load that depends on the orientation
+  std::size_t turned_bodies[kLanes];
+  std::size_t turned_count = 0;
+  const auto flush_turned = [&] {
+    if constexpr (kHasLoadedLanes) {
+      if (turned_count < kLanes) turned.FillIdle(turned_count);
+      loaded_lanes(dt_s, &turned);
+      for (std::size_t l = 0; l < turned_count; ++l) turned.Store(l, &(*states)[turned_bodies[l]]);
+    }
+    turned_count = 0;
+  };
+  for (const std::size_t body : bodies) {
+    const BodyModel& model = models[body];
+    const HeldLoads& load = loads[body];
+    BodyState& state = (*states)[body];
+    if (!load.has_torque() && FitsFreeLanes(model, state, dt_s)) {
+      pulled.Load(pulled_count, model, state);
+      pulled_bodies[pulled_count++] = body;
+      if (pulled_count == kLanes) flush_pulled();
+    } else if (kHasLoadedLanes && FitsLoadedLanes(model, state, load, dt_s)) {
+      turned.Load(turned_count, model, state, load);
+      turned_bodies[turned_count++] = body;
+      if (turned_count == kLanes) flush_turned();
+    } else {
+      step_one(model, load, dt_s, &state);  // too fast for the lanes' series
+    }
+  }
+  if (pulled_count > 0) flush_pulled();
+  if (turned_count > 0) flush_turned();
+}
 
 }  // namespace rigid_body_sim::core

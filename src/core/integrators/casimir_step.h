@@ -23,27 +23,6 @@ struct CasimirSplit {
   double axis3;    // 1/λ_3 − c
 };
 
-// Copies what the lane kernels read of a model (principal axes, M and the
-// Casimir split) and of a state (x, q, p, L) into `lane` of a block of lanes
-// (FreeLanes, LoadedLanes: the same field names).
-template <typename Lanes>
-void LoadLane(std::size_t lane, const BodyModel& model, const BodyState& state, Lanes* lanes) {
-  for (int k = 0; k < 3; ++k) {
-    lanes->position[k][lane] = state.position[k];
-    lanes->linear_momentum[k][lane] = state.linear_momentum[k];
-    lanes->angular_momentum[k][lane] = state.angular_momentum[k];
-  }
-  for (int k = 0; k < 4; ++k) {
-    lanes->orientation[k][lane] = state.orientation.coeffs()[k];
-    lanes->principal_axes[k][lane] = model.principal_axes().coeffs()[k];
-  }
-  const CasimirSplit split(model);
-  lanes->mass[lane] = model.mass();
-  lanes->casimir[lane] = split.casimir;
-  lanes->axis1[lane] = split.axis1;
-  lanes->axis3[lane] = split.axis3;
-}
-
 // The rate at which the Casimir split leaves exact flows. The axis-1 and
 // axis-3 flows turn at α = |a1 Π1| and β = |a3 Π3|; the composition's local
 // error comes from their commutators, of size αβ(α + β) per h³, so the rate

@@ -28,6 +28,7 @@
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 #include "rigid_body_sim/core/load.h"
+#include "step_parts.h"
 
 namespace rigid_body_sim::core {
 
@@ -60,11 +61,9 @@ struct KickSplitting {
   std::array<double, m> kick;       // k
 };
 
-// Yoshida, Phys. Lett. A 150 (1990) 262–268: the triple jump, fourth order,
-// w₁ = 1/(2 − 2^{1/3}), w₀ = 1 − 2w₁ (as kYoshidaOuterWeight and
-// kYoshidaInnerWeight of step_parts.h, here as constants).
+// Yoshida, Phys. Lett. A 150 (1990) 262–268: the triple jump, fourth order.
 inline constexpr std::array<double, 3> kYoshida3Weights = {
-    1.3512071919596576340, -1.7024143839193152681, 1.3512071919596576340};
+    kYoshidaOuterWeight, kYoshidaInnerWeight, kYoshidaOuterWeight};
 
 // Yoshida (1990), solution A: the 7-stage symmetric composition of order 6,
 // the fewest stages for order 6.

@@ -1,8 +1,6 @@
 // Pieces of a step shared by several schemes.
 #pragma once
 
-#include <cmath>
-
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/load.h"
 
@@ -10,9 +8,10 @@ namespace rigid_body_sim::core {
 
 // Yoshida (1990): the triple jump S(w1 h) S(w0 h) S(w1 h) of a symmetric
 // second-order step S is fourth order when w1 + w0 + w1 = 1 and
-// 2 w1³ + w0³ = 0 (the third-order error terms cancel).
-inline const double kYoshidaOuterWeight = 1.0 / (2.0 - std::cbrt(2.0));  // w1
-inline const double kYoshidaInnerWeight = 1.0 - 2.0 * kYoshidaOuterWeight;  // w0
+// 2 w1³ + w0³ = 0 (the third-order error terms cancel): w1 = 1/(2 − 2^{1/3}),
+// w0 = 1 − 2 w1.
+inline constexpr double kYoshidaOuterWeight = 1.3512071919596576340;   // w1
+inline constexpr double kYoshidaInnerWeight = -1.7024143839193152681;  // w0
 
 // p += h F, L += h τ with the wrench at t_s into the step and the current
 // orientation; the torque pass is skipped for a load that has none.

@@ -1,0 +1,91 @@
+#include "rigid_body_sim/core/integrators/casimir_rkn.h"
+
+#include "casimir_free_lanes.h"
+#include "casimir_loaded_lanes.h"
+#include "compositions.h"
+
+namespace rigid_body_sim::core {
+namespace {
+
+// The torque-free composition, the outer composition of free flows and
+// kicks, and the free flows between kicks: the cheapest composition of the
+// outer order (the outer composition's error dominates).
+template <int kOrder>
+struct Compositions;
+
+template <>
+struct Compositions<4> {
+  static constexpr const auto& kFree = kBlanesMoanS6;
+  static constexpr const auto& kOuter = kMcLachlanRkn4;
+  static constexpr auto kInner = StrangComposition(kYoshida3Weights);
+};
+
+template <>
+struct Compositions<6> {
+  static constexpr const auto& kFree = kBlanesMoanS10;
+  static constexpr const auto& kOuter = kOkunborSkeelRkn6;
+  static constexpr auto kInner = StrangComposition(kYoshida7Weights);
+};
+
+}  // namespace
+
+// The torque-free steps of kLanes bodies at once, one clone per
+// instruction set each (a template cannot carry the clones).
+RBS_SIMD_CLONES void CasimirRkn4FreeLanes(double h, FreeLanes* lanes) {
+  CompositionFreeLanes(Compositions<4>::kFree, h, lanes);
+}
+
+RBS_SIMD_CLONES void CasimirRkn6FreeLanes(double h, FreeLanes* lanes) {
+  CompositionFreeLanes(Compositions<6>::kFree, h, lanes);
+}
+
+namespace {
+
+template <int kOrder>
+constexpr auto kLanesStep = kOrder == 4 ? CasimirRkn4FreeLanes : CasimirRkn6FreeLanes;
+
+}  // namespace
+
+template <int kOrder>
+void CasimirRknIntegrator<kOrder>::Step(const BodyModel& model, const Load* load, double dt_s,
+                                        BodyState* state) const {
+  using C = Compositions<kOrder>;
+  const CasimirSplit split(model);
+  if (load == nullptr) {
+    FreeCompositionStep(C::kFree, model, split, dt_s, state);
+    return;
+  }
+  NestedStep(C::kOuter, C::kInner, model, split, *load, dt_s, state);
+}
+
+template <int kOrder>
+double CasimirRknIntegrator<kOrder>::RotationErrorRate(const BodyModel& model,
+                                                       const BodyState& state, double dt_s) const {
+  return CasimirErrorRate(model, CasimirSplit(model), state, dt_s);
+}
+
+template <int kOrder>
+void CasimirRknIntegrator<kOrder>::StepFree(const std::vector<BodyModel>& models,
+                                            const std::vector<std::size_t>& bodies, double dt_s,
+                                            std::vector<BodyState>* states) const {
+  StepFreeInLanes(models, bodies, dt_s, states, kLanesStep<kOrder>,
+                  [this](const BodyModel& model, double h, BodyState* state) {
+                    Step(model, nullptr, h, state);
+                  });
+}
+
+// Bodies under a constant force in the free lanes; the others one by one.
+template <int kOrder>
+void CasimirRknIntegrator<kOrder>::StepLoaded(const std::vector<BodyModel>& models,
+                                              const std::vector<std::size_t>& bodies,
+                                              const std::vector<HeldLoads>& loads, double dt_s,
+                                              std::vector<BodyState>* states) const {
+  StepLoadedInLanes(models, bodies, loads, dt_s, states, kLanesStep<kOrder>, nullptr,
+                    [this](const BodyModel& model, const HeldLoads& load, double h,
+                           BodyState* state) { Step(model, &load, h, state); });
+}
+
+template class CasimirRknIntegrator<4>;
+template class CasimirRknIntegrator<6>;
+
+}  // namespace rigid_body_sim::core
