@@ -115,26 +115,33 @@ BodyState RunOurs(const Scene& scene, const BodyModel& model, const std::string&
 
 // Median ns per body-step over kTimedBodies bodies: kTimingRepeats samples of
 // about kSampleTarget_ns each (at most max_steps steps, which the caller keeps
-// within the scene's duration), after one warm-up step that also sizes the
-// samples. `reset` puts every body back to the scene's start before the
-// warm-up and before each sample, untimed: the timed states stay those of the
-// scene (a body spun up past a scene's end could be frozen by World's checks).
+// within the scene's duration). Before each sample `reset` puts every body
+// back to the scene's start and one step runs untimed, so that the timed
+// states stay those of the scene (a body spun up past a scene's end could be
+// frozen by World's checks) and no sample pays for an engine's first step
+// after set-up (Bullet builds its broadphase tree then). The samples are
+// sized by a second untimed step.
 constexpr double kSampleTarget_ns = 2e7;
 
 template <typename Reset, typename StepAll>
 double TimePerBodyStep(long max_steps, Reset reset, StepAll step_all) {
   using Clock = std::chrono::steady_clock;
-  reset();
-  const auto warm_up_start = Clock::now();
-  step_all(0);
+  const auto restart = [&] {
+    reset();
+    step_all(0);
+  };
+  restart();
+  const auto sizing_start = Clock::now();
+  step_all(1);
   const double one_step_ns =
-      std::chrono::duration<double, std::nano>(Clock::now() - warm_up_start).count();
-  const long steps = std::clamp<long>(std::lround(kSampleTarget_ns / one_step_ns), 1, max_steps);
+      std::chrono::duration<double, std::nano>(Clock::now() - sizing_start).count();
+  const long steps =
+      std::clamp<long>(std::lround(kSampleTarget_ns / one_step_ns), 1, std::max<long>(1, max_steps - 1));
   std::vector<double> samples;
   for (int r = 0; r < kTimingRepeats; ++r) {
-    reset();
+    restart();
     const auto start = Clock::now();
-    for (long n = 0; n < steps; ++n) step_all(n);
+    for (long n = 1; n <= steps; ++n) step_all(n);
     const std::chrono::duration<double, std::nano> elapsed = Clock::now() - start;
     samples.push_back(elapsed.count() / (double(steps) * kTimedBodies));
   }
