@@ -14,6 +14,7 @@ Eigen::Vector3d VeeOfAntisymmetricPart(const Eigen::Matrix3d& m) {
 
 void HeldLoads::Clear() {
   torque_bound_ = -1.0;
+  has_principal_parts_ = false;
   force_world_.setZero();
   force_body_.setZero();
   torque_world_.setZero();
@@ -25,6 +26,7 @@ void HeldLoads::Clear() {
 
 void HeldLoads::AddWorldForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset) {
   torque_bound_ = -1.0;
+  has_principal_parts_ = false;
   force_world_ += force;
   force_moment_ += force * offset.transpose();
   has_torque_ = true;
@@ -32,6 +34,7 @@ void HeldLoads::AddWorldForce(const Eigen::Vector3d& force, const Eigen::Vector3
 
 void HeldLoads::AddBodyForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset) {
   torque_bound_ = -1.0;
+  has_principal_parts_ = false;
   force_body_ += force;
   torque_body_ += offset.cross(force);
   has_torque_ = true;
@@ -40,12 +43,14 @@ void HeldLoads::AddBodyForce(const Eigen::Vector3d& force, const Eigen::Vector3d
 
 void HeldLoads::AddWorldCouple(const Eigen::Vector3d& couple) {
   torque_bound_ = -1.0;
+  has_principal_parts_ = false;
   torque_world_ += couple;
   has_torque_ = true;
 }
 
 void HeldLoads::AddBodyCouple(const Eigen::Vector3d& couple) {
   torque_bound_ = -1.0;
+  has_principal_parts_ = false;
   torque_body_ += couple;
   has_torque_ = true;
   has_body_axes_ = true;
@@ -73,6 +78,18 @@ double HeldLoads::NewTorqueBound() const {
                                     2.0 * force_moment_.cwiseAbs().sum()
                               : 0.0;
   return torque_bound_;
+}
+
+const HeldLoads::PrincipalParts& HeldLoads::InPrincipalFrame(
+    const Eigen::Quaterniond& body_from_principal) const {
+  if (!has_principal_parts_ ||
+      !principal_parts_.body_from_principal.coeffs().cwiseEqual(body_from_principal.coeffs()).all()) {
+    const Eigen::Matrix3d r = body_from_principal.toRotationMatrix();
+    principal_parts_ = {body_from_principal, r.transpose() * force_body_, r.transpose() * torque_body_,
+                        force_moment_ * r};
+    has_principal_parts_ = true;
+  }
+  return principal_parts_;
 }
 
 double HeldLoads::TurnRate(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& omega) const {

@@ -44,6 +44,17 @@ class HeldLoads final : public Load {
   // Whether a body-axes force or couple was added.
   bool has_body_axes() const { return has_body_axes_; }
 
+  // The body-axes parts and C in a principal frame P of the body, R_BP the
+  // rotation `body_from_principal`: R_BPᵀ F_B, R_BPᵀ τ_B and C R_BP, so that a
+  // kernel working in P needs R_WP alone. Kept until the loads change.
+  struct PrincipalParts {
+    Eigen::Quaterniond body_from_principal;
+    Eigen::Vector3d force_body;    // R_BPᵀ F_B
+    Eigen::Vector3d torque_body;   // R_BPᵀ τ_B
+    Eigen::Matrix3d force_moment;  // C R_BP
+  };
+  const PrincipalParts& InPrincipalFrame(const Eigen::Quaterniond& body_from_principal) const;
+
   // The reduced parts, for kernels that evaluate At themselves.
   const Eigen::Vector3d& force_world() const { return force_world_; }
   const Eigen::Vector3d& force_body() const { return force_body_; }
@@ -61,6 +72,8 @@ class HeldLoads final : public Load {
   Eigen::Matrix3d force_moment_ = Eigen::Matrix3d::Zero();  // C = Σ f_i r̄_iᵀ
   Eigen::Matrix3d torque_projector_ = Eigen::Matrix3d::Identity();
   mutable double torque_bound_ = -1.0;  // TorqueBound, once asked; < 0: not yet
+  mutable PrincipalParts principal_parts_;
+  mutable bool has_principal_parts_ = false;  // principal_parts_ holds for these loads
   bool has_torque_ = false;
   bool has_body_axes_ = false;
   bool projects_torque_ = false;

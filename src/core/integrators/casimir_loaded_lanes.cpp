@@ -12,9 +12,9 @@ void LoadedLanes::FillIdle(std::size_t first) {
   for (std::size_t l = first; l < kLanes; ++l) {
     for (int k = 0; k < 3; ++k) {
       force_world[k][l] = 0.0;
-      force_body[k][l] = 0.0;
+      force_principal[k][l] = 0.0;
       torque_world[k][l] = 0.0;
-      torque_body[k][l] = 0.0;
+      torque_principal[k][l] = 0.0;
     }
     for (int k = 0; k < 9; ++k) moment[k][l] = 0.0;
   }
@@ -24,13 +24,13 @@ void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const BodyState
                        const HeldLoads& loads) {
   LaneBodies::Load(lane, model, state);
   body_axes = body_axes || loads.has_body_axes();
-  const double* moment_entries = loads.force_moment().data();  // column-major
+  const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
   for (int k = 0; k < 3; ++k) {
     force_world[k][lane] = loads.force_world()[k];
-    force_body[k][lane] = loads.force_body()[k];
+    force_principal[k][lane] = principal.force_body[k];
     torque_world[k][lane] = loads.torque_world()[k];
-    torque_body[k][lane] = loads.torque_body()[k];
-    for (int j = 0; j < 3; ++j) moment[3 * k + j][lane] = moment_entries[k + 3 * j];
+    torque_principal[k][lane] = principal.torque_body[k];
+    for (int j = 0; j < 3; ++j) moment[3 * k + j][lane] = principal.force_moment(k, j);
   }
 }
 
@@ -64,10 +64,6 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, LoadedLanes* la
     Quaternion q = Multiply(Quaternion{b.orientation[0][l], b.orientation[1][l], b.orientation[2][l],
                                        b.orientation[3][l]},
                             axes);
-    // The body-axes load in the principal frame P: F_P = R_BPᵀ F_B, τ_P =
-    // R_BPᵀ τ_B and C_P = C R_BP, so that R_WB = R_WP R_BPᵀ never appears.
-    double r[9];
-    lanes::RotationMatrix(axes, r);
     double x[3], p[3], lw[3], fw[3], fp[3] = {}, tw[3], tp[3] = {}, c[9];
     for (int k = 0; k < 3; ++k) {
       x[k] = b.position[k][l];
@@ -76,16 +72,11 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, LoadedLanes* la
       fw[k] = b.force_world[k][l];
       tw[k] = b.torque_world[k][l];
       if constexpr (kBodyAxes) {
-        fp[k] = r[k] * b.force_body[0][l] + r[3 + k] * b.force_body[1][l] + r[6 + k] * b.force_body[2][l];
-        tp[k] = r[k] * b.torque_body[0][l] + r[3 + k] * b.torque_body[1][l] + r[6 + k] * b.torque_body[2][l];
+        fp[k] = b.force_principal[k][l];
+        tp[k] = b.torque_principal[k][l];
       }
     }
-    for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) {
-        c[3 * i + j] = b.moment[3 * i][l] * r[j] + b.moment[3 * i + 1][l] * r[3 + j] +
-                       b.moment[3 * i + 2][l] * r[6 + j];
-      }
-    }
+    for (int k = 0; k < 9; ++k) c[k] = b.moment[k][l];
     const double inverse_mass = 1.0 / b.mass[l];
     const double a1 = b.axis1[l], a3 = b.axis3[l], casimir = b.casimir[l];
 

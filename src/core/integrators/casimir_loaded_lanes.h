@@ -31,13 +31,14 @@ inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, cons
 }
 
 struct LoadedLanes : LaneBodies {
-  // Load (HeldLoads): F = F_W + R_WB F_B, τ = τ_W + R_WB τ_B + vee(C R_WBᵀ − R_WB Cᵀ);
-  // the kernel turns the body-axes parts into the principal frame itself.
+  // Load (HeldLoads) with its body-axes parts in the principal frame P
+  // (HeldLoads::InPrincipalFrame): F = F_W + R_WP F_P,
+  // τ = τ_W + R_WP τ_P + vee(C_P R_WPᵀ − R_WP C_Pᵀ).
   double force_world[3][kLanes];
-  double force_body[3][kLanes];
+  double force_principal[3][kLanes];
   double torque_world[3][kLanes];
-  double torque_body[3][kLanes];
-  double moment[9][kLanes];  // C = Σ f_i r̄_iᵀ, row-major
+  double torque_principal[3][kLanes];
+  double moment[9][kLanes];  // C_P = C R_BP, row-major
   // Whether a lane loaded since the last step holds a body-axes force or couple.
   bool body_axes = false;
 
