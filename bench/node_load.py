@@ -890,8 +890,8 @@ def write_report(results, quick, elapsed):
                   "the call / (bodies x steps), median over the calls; node CPU = the node's utime + stime "
                   "over each call (10 ms ticks). Core: `throughput_bench --benchmark_filter=^%s$` on the "
                   "node's core with its scheduling right after, median of %d repetitions. A `rosservice call` "
-                  "timed from the shell would add the command's own start-up (0.5-1 s here, 25-50 ns per "
-                  "body-step at this size)."
+                  "timed from the shell would add the command's own start-up (0.7-1.2 s on this machine, "
+                  "35-60 ns per body-step at this size)."
                   % (STEP_COST_BODIES, STEP_COST_STEPS, r["trials"], CORE_STEP_BENCHMARK, r["trials"]))
         md.append("")
         md.append(md_table(
