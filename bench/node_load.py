@@ -15,12 +15,22 @@ resolution 2: 8 particles each) and measures
   3. particle wrenches per second taken in through ~particle_wrenches while
      the rate holds (arrays of K entries at R Hz, pre-serialised once);
   4. latency from a ParticleWrench (zero stamp) to the first ~bodies message
-     whose linear momentum reflects it (wall clock, median of >= 20 trials).
+     whose linear momentum reflects it (wall clock, median of >= 20 trials);
+  5. pushed capacity: part 1 with one held particle force on every body, sent
+     once as ParticleWrenchArray messages and checked held (diagnostics key
+     held_wrenches, and the z velocity of the first and last body growing at
+     F/m) before the window;
+  6. the cost of ~step through the node: ~step 20000 while paused on 1,000
+     tumbling boxes, ns per body-step from a persistent service client, next
+     to throughput_bench's BM_WorldStep/casimir_splitting4/free/1000 on the
+     node's core in the same run.
 
 Writes a Markdown report (also printed) to bench/results/node_load.md and one
-CSV row per run to bench/results/node_load.csv.
+CSV row per run to bench/results/node_load.csv. Without part flags every part
+runs; --pushed and --step-cost run only the parts named.
 
-  bench/node_load.py [--quick] [--sizes N ...] [--workspace PATH] [--port 11395] [--out DIR]
+  bench/node_load.py [--quick] [--pushed] [--step-cost] [--sizes N ...] [--workspace PATH] [--port 11395]
+                     [--out DIR]
 
 The script re-executes itself with PATH/devel/setup.bash sourced (default
 workspace: .build_ws in the checkout). It and the master stay on core 0, the
@@ -30,6 +40,7 @@ node runs on core 1 (--node-cpu). Everything started is stopped at the end.
 import argparse
 import csv
 import io
+import json
 import math
 import os
 import random
@@ -40,15 +51,19 @@ import tempfile
 import threading
 import time
 
-from node_harness import (NODE_NAME, NS, REPO, CpuWindow, Diagnostics, Processes, add_workspace_argument,
-                          devel_program, reexec_in_workspace, start_master)
+from node_harness import (CLK_TCK, NODE_NAME, NS, REPO, CpuWindow, Diagnostics, Processes, add_workspace_argument,
+                          devel_program, proc_cpu_ticks, reexec_in_workspace, start_master)
 
 
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--quick", action="store_true", help="smaller scan, under a minute")
     parser.add_argument("--sizes", type=int, nargs="+", default=None,
-                        help="body counts the capacity part scans (default 1 1000 10000)")
+                        help="body counts the capacity parts scan (default 1 1000 10000; pushed: 1000 10000)")
+    parser.add_argument("--pushed", action="store_true",
+                        help="run the pushed-capacity part (5); with no part flag, every part runs")
+    parser.add_argument("--step-cost", action="store_true",
+                        help="run the ~step cost part (6); with no part flag, every part runs")
     add_workspace_argument(parser)
     parser.add_argument("--port", type=int, default=11395, help="port of the private ROS master")
     parser.add_argument("--node-cpu", type=int, default=1, help="core the node is pinned to (taskset -c)")
@@ -77,7 +92,10 @@ if ARGS.sched != "normal":
 NODE_PREFIX = {"normal": [], "nice": ["nice", "-n", "-20"], "fifo": ["chrt", "-f", "10"]}[ARGS.sched]
 
 import rospy  # noqa: E402
+from geometry_msgs.msg import TwistStamped  # noqa: E402
 from rigid_body_sim.msg import BodyStateArray, ParticleWrench, ParticleWrenchArray  # noqa: E402
+from rigid_body_sim.srv import Step  # noqa: E402
+from std_srvs.srv import SetBool  # noqa: E402
 
 T_START = time.monotonic()
 
@@ -204,7 +222,8 @@ CSV_FIELDS = ["part", "label", "n_bodies", "rate_hz", "publish_rate_hz", "subscr
               "core_other_percent", "loadavg1", "tf_msgs_per_s", "bodies_msgs_per_s", "rx_mbyte_per_s",
               "pub_msgs_per_s", "pub_busy_percent", "wrenches_sent_per_s", "wrenches_taken_per_s",
               "latency_median_ms", "latency_p90_ms", "latency_min_ms", "latency_max_ms",
-              "stamp_lag_median_ms", "trials", "passed", "load_ok", "note"]
+              "stamp_lag_median_ms", "trials", "held_wrenches", "push_dv_dt_mps2", "ns_per_body_step",
+              "cpu_ns_per_body_step", "core_ns_per_body_step", "node_to_core", "passed", "load_ok", "note"]
 
 
 def record(**row):
@@ -244,35 +263,96 @@ def machine_floor(window_s, busy_us):
     return int(fields["late_wakeups"]), float(fields["worst_late_us"])
 
 
-def capacity_run(diag, n, warmup, window, attempt):
-    with NodeRun(diag, make_scene(n, 1000, 10), "capacity_%d_%d" % (n, attempt)) as run:
+# Part 5's push: world z at particle 0, a corner, so each body gets a force and a torque (~3e-4 N m);
+# small enough that after a minute's push no box leaves the lanes' range or needs a substep.
+PUSH_FORCE_N = 0.005
+# Entries per ParticleWrenchArray: the node reads at most 10,000 of one array (doc/node.md).
+PUSH_ENTRIES_PER_ARRAY = 1000
+
+
+def push_array(first, count):
+    wrenches = []
+    for i in range(first, first + count):
+        w = ParticleWrench(body="b%d" % i, particle=0)  # zero stamp: from the next step; no timeout
+        w.header.frame_id = "world"
+        w.wrench.force.z = PUSH_FORCE_N
+        wrenches.append(w)
+    return ParticleWrenchArray(wrenches=wrenches)
+
+
+def z_velocity_rate(body, span_s=1.0):
+    """d(v_z)/dt of a body over about span_s of simulation time, from two ~<body>/twist messages."""
+    topic = "%s/%s/twist" % (NS, body)
+    first = rospy.wait_for_message(topic, TwistStamped, timeout=10)
+    time.sleep(span_s)
+    last = rospy.wait_for_message(topic, TwistStamped, timeout=10)
+    dt = (last.header.stamp - first.header.stamp).to_sec()
+    return (last.twist.linear.z - first.twist.linear.z) / dt if dt > 0 else float("nan")
+
+
+def push_every_body(run, n):
+    """Holds one world-axes particle force on each of the n bodies, sent once, and checks that every
+    one is held (diagnostics) and acts (the first and last body speed up at F/m, boxes of 1 kg)."""
+    pub = rospy.Publisher(NS + "/particle_wrenches", ParticleWrenchArray, queue_size=100)
+    deadline = time.monotonic() + 10
+    while pub.get_num_connections() == 0 and time.monotonic() < deadline:
+        time.sleep(0.05)
+    for first in range(0, n, PUSH_ENTRIES_PER_ARRAY):
+        pub.publish(push_array(first, min(PUSH_ENTRIES_PER_ARRAY, n - first)))
+    report = None
+    deadline = time.monotonic() + 10
+    while time.monotonic() < deadline:
+        report = run.diag.wait_next(2, run.alive)
+        if report is not None and report[1].get("held_wrenches", 0) >= n:
+            break
+    pub.unregister()
+    held = int(report[1].get("held_wrenches", 0)) if report else 0
+    rejected = int(report[1].get("rejected_messages", 0)) if report else -1
+    if held != n or rejected != 0:
+        raise RuntimeError("pushed N=%d: %d wrenches held, %d rejected" % (n, held, rejected))
+    rates = [z_velocity_rate("b0"), z_velocity_rate("b%d" % (n - 1))]
+    if any(not abs(rate - PUSH_FORCE_N) <= 0.01 * PUSH_FORCE_N for rate in rates):
+        raise RuntimeError("pushed N=%d: dv_z/dt %s m/s^2, expected %g" % (n, rates, PUSH_FORCE_N))
+    log("pushed N=%d: %d wrenches held, dv_z/dt of the first and last body %.6f, %.6f m/s^2 (F/m = %g)"
+        % (n, held, rates[0], rates[1], PUSH_FORCE_N))
+    return {"held_wrenches": held, "push_dv_dt_mps2": min(rates)}
+
+
+def capacity_run(diag, n, warmup, window, attempt, pushed=False):
+    label = "pushed" if pushed else "capacity"
+    with NodeRun(diag, make_scene(n, 1000, 10), "%s_%d_%d" % (label, n, attempt)) as run:
+        held = push_every_body(run, n) if pushed else {}
         r = run.measure(warmup, window)
+    r.update(held)
     r["floor_overruns"], r["floor_worst_us"] = machine_floor(r["window_s"], r["step_mean_us"])
     passed = r["overruns"] == 0 and r["rtf_min"] >= 0.99
     # Within noise: no more than 1/s, or than twice what the bare loop got in the same time.
     load_ok = (r["overruns"] <= max(NOISE_OVERRUNS_PER_S * r["window_s"], 2 * r["floor_overruns"])
                and r["catch_up_limit_hits"] == 0 and r["rtf_min"] >= 0.99)
-    log("capacity N=%d: %d overruns in %.1f s (bare loop, same step time: %d), step %.1f us (max %.0f), "
+    log("%s N=%d: %d overruns in %.1f s (bare loop, same step time: %d), step %.1f us (max %.0f), "
         "RTF min %.3f, CPU %.0f%%, core %d other %.0f%%, load %.2f, first report %.1f s -> %s"
-        % (n, r["overruns"], r["window_s"], r["floor_overruns"], r["step_mean_us"], r["step_max_us"],
+        % (label, n, r["overruns"], r["window_s"], r["floor_overruns"], r["step_mean_us"], r["step_max_us"],
            r["rtf_min"], r["cpu_percent"], ARGS.node_cpu, r["core_other_percent"], r["loadavg1"],
            r["startup_s"], "pass" if passed else ("pass within noise" if load_ok else "FAIL")))
-    return record(part=1, label="capacity", n_bodies=n, rate_hz=1000, publish_rate_hz=10, subscribers="none",
-                  attempt=attempt, passed=passed, load_ok=load_ok, **r)
+    return record(part=5 if pushed else 1, label=label, n_bodies=n, rate_hz=1000, publish_rate_hz=10,
+                  subscribers="none", attempt=attempt, passed=passed, load_ok=load_ok, **r)
 
 
-def part_capacity(diag, quick, budget_end):
+def part_capacity(diag, quick, budget_end, pushed=False):
     """Scans N until a run fails beyond noise, then bisects. Returns
     (largest strict pass, largest pass within noise, smallest failure beyond noise)."""
-    scan = ARGS.sizes or ([1, 100, 1000] if quick else [1, 1000, 10000])
+    if pushed:
+        scan = ARGS.sizes or ([100, 1000] if quick else [1000, 10000])
+    else:
+        scan = ARGS.sizes or ([1, 100, 1000] if quick else [1, 1000, 10000])
     warmup, window = (1.0, 3.0) if quick else (3.0, 10.0)
     strict = {}
 
     def run_n(n):
-        row = capacity_run(diag, n, warmup, window, 1)
+        row = capacity_run(diag, n, warmup, window, 1, pushed)
         if not row["passed"] and not quick and row["load_ok"]:
-            log("capacity N=%d: overruns within noise; repeating once for a clean run" % n)
-            row2 = capacity_run(diag, n, warmup, window, 2)
+            log("%s N=%d: overruns within noise; repeating once for a clean run" % (row["label"], n))
+            row2 = capacity_run(diag, n, warmup, window, 2, pushed)
             row = row2 if row2["passed"] else row
         strict[n] = row["passed"]
         return row["load_ok"]
@@ -574,6 +654,57 @@ def part_latency(diag, quick):
     return [latency_run(diag, rate, trials) for rate in rates]
 
 
+# ---------------------------------------------------- part 6: ~step cost
+
+STEP_COST_BODIES = 1000
+STEP_COST_STEPS = 20000
+CORE_STEP_BENCHMARK = "BM_WorldStep/casimir_splitting4/free/1000"
+
+
+def core_ns_per_body_step(repetitions):
+    """Median ns per body-step of the core's CORE_STEP_BENCHMARK, on the node's core with its scheduling."""
+    out = subprocess.run(NODE_PREFIX + ["taskset", "-c", str(ARGS.node_cpu), devel_program(WS, "throughput_bench"),
+                                        "--benchmark_filter=^%s$" % CORE_STEP_BENCHMARK,
+                                        "--benchmark_repetitions=%d" % repetitions,
+                                        "--benchmark_report_aggregates_only=true", "--benchmark_format=json"],
+                         stdout=subprocess.PIPE, universal_newlines=True, check=True).stdout
+    median = next(b for b in json.loads(out)["benchmarks"] if b.get("aggregate_name") == "median")
+    return 1e9 * median["per_body_step"]
+
+
+def part_step_cost(diag, quick):
+    """~step STEP_COST_STEPS on the paused node, timed from a persistent client (no per-call connection
+    set-up), and the node's own CPU time over each call; then the core's figure."""
+    repetitions = 3 if quick else 5
+    body_steps = float(STEP_COST_BODIES * STEP_COST_STEPS)
+    walls, cpus = [], []
+    with NodeRun(diag, make_scene(STEP_COST_BODIES, 1000, 10), "step_cost") as run:
+        rospy.ServiceProxy(NS + "/set_paused", SetBool)(True)
+        step = rospy.ServiceProxy(NS + "/step", Step, persistent=True)
+        step(1000)  # warm-up: caches and first-touch page faults
+        for _ in range(repetitions):
+            ticks0, t0 = proc_cpu_ticks(run.proc.pid), time.monotonic()
+            response = step(STEP_COST_STEPS)
+            t1, ticks1 = time.monotonic(), proc_cpu_ticks(run.proc.pid)
+            if not response.success:
+                raise RuntimeError("~step failed: %s" % response.message)
+            walls.append(1e9 * (t1 - t0) / body_steps)
+            cpus.append(1e9 * (ticks1 - ticks0) / CLK_TCK / body_steps)
+        step.close()
+        startup_s, integrator = run.startup_s, run.first[1].get("integrator", "")
+    core = core_ns_per_body_step(repetitions)
+    node = statistics.median(walls)
+    r = {"ns_per_body_step": node, "cpu_ns_per_body_step": statistics.median(cpus), "core_ns_per_body_step": core,
+         "node_to_core": node / core, "trials": repetitions, "loadavg1": os.getloadavg()[0],
+         "startup_s": startup_s, "integrator": integrator}
+    log("~step %d on %d bodies: node %.1f ns per body-step (its CPU %.1f; each call %s), core %s %.1f -> %.2fx, "
+        "load %.2f" % (STEP_COST_STEPS, STEP_COST_BODIES, node, r["cpu_ns_per_body_step"],
+                       ", ".join("%.1f" % w for w in walls), CORE_STEP_BENCHMARK, core, r["node_to_core"],
+                       r["loadavg1"]))
+    return record(part=6, label="step cost", n_bodies=STEP_COST_BODIES, rate_hz=1000, publish_rate_hz=10,
+                  subscribers="none", attempt=1, passed=r["node_to_core"] <= 1.2, **r)
+
+
 # ------------------------------------------------------------------ report
 
 def git_describe():
@@ -587,7 +718,36 @@ def git_describe():
         return "unknown"
 
 
-def write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed):
+def capacity_summary(kind, capacity):
+    strict_best, best, first_fail = capacity
+    return [("%s at rate 1000 Hz, zero overruns in the window (publish_rate 10, one core)" % kind,
+             "%s" % (strict_best if strict_best is not None else "none of the sizes tried")),
+            ("%s at rate 1000 Hz, overruns within this machine's noise (<= %.0f/s or <= 2x a bare loop's), "
+             "RTF >= 0.99" % (kind, NOISE_OVERRUNS_PER_S),
+             "%s (%s)" % (best if best is not None else "none",
+                          "fails at %s" % first_fail if first_fail else "no size tried failed"))]
+
+
+def capacity_table(part):
+    rows = [r for r in ROWS if r["part"] == part]
+    return md_table(
+        ["N bodies", "try", "window s", "overruns", "bare loop overruns", "overruns per publish cycle",
+         "catch-up hits",
+         "step mean us", "ns per body-step", "step max us", "RTF min", "node CPU %", "core other %", "load avg",
+         "first report s", "pass"],
+        [[r["n_bodies"], r["attempt"], r["window_s"], r["overruns"], r["floor_overruns"],
+          "%.2f" % (r["overruns"] / (10.0 * r["window_s"])),
+          r["catch_up_limit_hits"], r["step_mean_us"], 1e3 * r["step_mean_us"] / r["n_bodies"],
+          r["step_max_us"], "%.3f" % r["rtf_min"], r["cpu_percent"], r["core_other_percent"],
+          "%.2f" % r["loadavg1"], r["startup_s"],
+          "yes" if r["passed"] else ("within noise" if r["load_ok"] else "no")] for r in rows])
+
+
+def write_report(results, quick, elapsed):
+    """results: what each part that ran returned, by name."""
+    capacity, pushed = results.get("capacity"), results.get("pushed")
+    cpu_rows, intake_rows = results.get("cpu", []), results.get("intake", [])
+    latency_rows, step_cost = results.get("latency", []), results.get("step_cost")
     loads = [r["loadavg1"] for r in ROWS if "loadavg1" in r]
     cpu_model = ""
     try:
@@ -599,7 +759,6 @@ def write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed):
     except OSError:
         pass
     integrator = next((r.get("integrator") for r in ROWS if r.get("integrator")), "")
-    strict_best, best, first_fail = capacity
     md = ["# The node under load (`bench/node_load.py`%s)" % (" --quick" if quick else ""), ""]
     md.append("Commit %s, %s, %d cores; node pinned to core %d (`taskset`) with scheduling `%s`, this script "
               "and the master on core %d. Integrator: %s (the node's default). Scenes: N generated boxes, `resolution: 2` "
@@ -611,13 +770,7 @@ def write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed):
     md.append("")
     md.append("## Summary")
     md.append("")
-    summary = []
-    summary.append(("bodies at rate 1000 Hz, zero overruns in the window (publish_rate 10, one core)",
-                    "%s" % (strict_best if strict_best is not None else "none of the sizes tried")))
-    summary.append(("bodies at rate 1000 Hz, overruns within this machine's noise (<= %.0f/s or <= 2x a bare "
-                    "loop's), RTF >= 0.99" % NOISE_OVERRUNS_PER_S,
-                    "%s (%s)" % (best if best is not None else "none",
-                                 "fails at %s" % first_fail if first_fail else "no size tried failed")))
+    summary = capacity_summary("bodies", capacity) if capacity else []
     for r in cpu_rows:
         summary.append(("node CPU, %d bodies, /tf + ~bodies at 100 Hz subscribed" % r["n_bodies"],
                         "%.1f %% of one core" % r["cpu_percent"]))
@@ -632,108 +785,148 @@ def write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed):
         summary.append(("wrench -> ~bodies latency, publish_rate %d (median of %d)"
                         % (r["publish_rate_hz"], r["trials"]),
                         "%.2f ms (1/publish_rate = %.1f ms)" % (r["latency_median_ms"], 1e3 / r["publish_rate_hz"])))
+    if pushed:
+        summary += capacity_summary("pushed bodies (one held particle force each)", pushed)
+    if step_cost:
+        summary.append(("~step %d while paused, %d bodies: node / core ns per body-step"
+                        % (STEP_COST_STEPS, STEP_COST_BODIES),
+                        "%.1f / %.1f (%.2fx)" % (step_cost["ns_per_body_step"], step_cost["core_ns_per_body_step"],
+                                                 step_cost["node_to_core"])))
     md.append(md_table(["figure", "value"], summary))
     md.append("")
 
-    md.append("## 1. Capacity: rate 1000 Hz, publish_rate 10, no /tf or ~bodies subscriber")
-    md.append("")
-    md.append("Each run: node started on a fresh scene, %s s warm-up, then the window between two "
-              "diagnostics reports. Overruns = increase of the cumulative `overruns` key (a wake-up late by "
-              "more than one step). RTF min = lowest `real_time_factor_achieved` in the window. "
-              "Pass = zero overruns and RTF min >= 0.99; \"within noise\" = at most %.0f overrun/s or at most "
-              "twice the bare loop's count, no catch-up-limit hit and RTF min >= 0.99. \"bare loop\" = "
-              "`bench/wake_jitter` right after the run, on the node's core with its scheduling: sleep to each "
-              "1 ms boundary, then busy for the run's mean step time, overruns counted as the node counts "
-              "them; it is what this shared virtual machine gives with no node at all. The scan stops at the "
-              "first size that fails beyond noise and "
-              "bisects; a size that fails only within noise is repeated once; all attempts are listed. "
-              "\"core other\" = busy time of the node's core not used by the node (disturbance)."
-              % ("1" if quick else "3", NOISE_OVERRUNS_PER_S))
-    md.append("")
-    rows = [r for r in ROWS if r["part"] == 1]
-    md.append(md_table(
-        ["N bodies", "try", "window s", "overruns", "bare loop overruns", "overruns per publish cycle",
-         "catch-up hits",
-         "step mean us", "ns per body-step", "step max us", "RTF min", "node CPU %", "core other %", "load avg",
-         "first report s", "pass"],
-        [[r["n_bodies"], r["attempt"], r["window_s"], r["overruns"], r["floor_overruns"],
-          "%.2f" % (r["overruns"] / (10.0 * r["window_s"])),
-          r["catch_up_limit_hits"], r["step_mean_us"], 1e3 * r["step_mean_us"] / r["n_bodies"],
-          r["step_max_us"], "%.3f" % r["rtf_min"], r["cpu_percent"], r["core_other_percent"],
-          "%.2f" % r["loadavg1"], r["startup_s"],
-          "yes" if r["passed"] else ("within noise" if r["load_ok"] else "no")] for r in rows]))
-    md.append("")
+    if capacity:
+        md.append("## 1. Capacity: rate 1000 Hz, publish_rate 10, no /tf or ~bodies subscriber")
+        md.append("")
+        md.append("Each run: node started on a fresh scene, %s s warm-up, then the window between two "
+                  "diagnostics reports. Overruns = increase of the cumulative `overruns` key (a wake-up late by "
+                  "more than one step). RTF min = lowest `real_time_factor_achieved` in the window. "
+                  "Pass = zero overruns and RTF min >= 0.99; \"within noise\" = at most %.0f overrun/s or at most "
+                  "twice the bare loop's count, no catch-up-limit hit and RTF min >= 0.99. \"bare loop\" = "
+                  "`bench/wake_jitter` right after the run, on the node's core with its scheduling: sleep to each "
+                  "1 ms boundary, then busy for the run's mean step time, overruns counted as the node counts "
+                  "them; it is what this shared virtual machine gives with no node at all. The scan stops at the "
+                  "first size that fails beyond noise and "
+                  "bisects; a size that fails only within noise is repeated once; all attempts are listed. "
+                  "\"core other\" = busy time of the node's core not used by the node (disturbance)."
+                  % ("1" if quick else "3", NOISE_OVERRUNS_PER_S))
+        md.append("")
+        md.append(capacity_table(1))
+        md.append("")
 
-    md.append("## 2. CPU use: rate 1000 Hz, /tf and ~bodies at 100 Hz, both subscribed")
-    md.append("")
-    md.append("Node CPU = (utime + stime) from /proc/<pid>/stat over the window, per wall second, in % of one "
-              "core. The script subscribes to /tf and ~bodies as raw bytes (rospy.AnyMsg), so both messages "
-              "are built, serialised and sent.")
-    md.append("")
-    md.append(md_table(
-        ["N bodies", "window s", "node CPU %", "step mean us", "/tf msg/s", "~bodies msg/s", "received MB/s",
-         "overruns", "core other %", "load avg"],
-        [[r["n_bodies"], r["window_s"], r["cpu_percent"], r["step_mean_us"], r["tf_msgs_per_s"],
-          r["bodies_msgs_per_s"], "%.2f" % r["rx_mbyte_per_s"], r["overruns"], r["core_other_percent"],
-          "%.2f" % r["loadavg1"]] for r in cpu_rows]))
-    md.append("")
+    if cpu_rows:
+        md.append("## 2. CPU use: rate 1000 Hz, /tf and ~bodies at 100 Hz, both subscribed")
+        md.append("")
+        md.append("Node CPU = (utime + stime) from /proc/<pid>/stat over the window, per wall second, in % of one "
+                  "core. The script subscribes to /tf and ~bodies as raw bytes (rospy.AnyMsg), so both messages "
+                  "are built, serialised and sent.")
+        md.append("")
+        md.append(md_table(
+            ["N bodies", "window s", "node CPU %", "step mean us", "/tf msg/s", "~bodies msg/s", "received MB/s",
+             "overruns", "core other %", "load avg"],
+            [[r["n_bodies"], r["window_s"], r["cpu_percent"], r["step_mean_us"], r["tf_msgs_per_s"],
+              r["bodies_msgs_per_s"], "%.2f" % r["rx_mbyte_per_s"], r["overruns"], r["core_other_percent"],
+              "%.2f" % r["loadavg1"]] for r in cpu_rows]))
+        md.append("")
 
-    md.append("## 3. Particle wrench intake through ~particle_wrenches (100 bodies, 800 particles, publish_rate 100)")
-    md.append("")
-    md.append("Arrays of K entries published at R Hz by this script (rospy, each array serialised once and "
-              "re-sent as bytes). The first entry of each array is deliberately invalid (particle 999), so the "
-              "increase of `rejected_particle_out_of_range` counts the arrays the node processed; taken = "
-              "arrays x K - all rejected entries. Held = RTF min >= 0.99, the node processed >= 97 % of the "
-              "arrays sent and took >= 99 % of their valid entries. Publisher busy = time inside "
-              "publish() / wall time.")
-    md.append("")
-    md.append(md_table(
-        ["K", "R Hz", "publisher Hz", "publisher busy %", "sent wrenches/s", "taken wrenches/s", "overruns",
-         "RTF min", "step mean us", "node CPU %", "load avg", "held", "note"],
-        [[r["entries_per_msg"], "%.0f" % r["msgs_hz"], r["pub_msgs_per_s"], r["pub_busy_percent"],
-          "%.0f" % r["wrenches_sent_per_s"], "%.0f" % r["wrenches_taken_per_s"], r["overruns"],
-          "%.3f" % r["rtf_min"], r["step_mean_us"], r["cpu_percent"], "%.2f" % r["loadavg1"],
-          "yes" if r["passed"] else "no", r.get("note", "")] for r in intake_rows]))
-    md.append("")
+    if intake_rows:
+        md.append("## 3. Particle wrench intake through ~particle_wrenches (100 bodies, 800 particles, publish_rate 100)")
+        md.append("")
+        md.append("Arrays of K entries published at R Hz by this script (rospy, each array serialised once and "
+                  "re-sent as bytes). The first entry of each array is deliberately invalid (particle 999), so the "
+                  "increase of `rejected_particle_out_of_range` counts the arrays the node processed; taken = "
+                  "arrays x K - all rejected entries. Held = RTF min >= 0.99, the node processed >= 97 % of the "
+                  "arrays sent and took >= 99 % of their valid entries. Publisher busy = time inside "
+                  "publish() / wall time.")
+        md.append("")
+        md.append(md_table(
+            ["K", "R Hz", "publisher Hz", "publisher busy %", "sent wrenches/s", "taken wrenches/s", "overruns",
+             "RTF min", "step mean us", "node CPU %", "load avg", "held", "note"],
+            [[r["entries_per_msg"], "%.0f" % r["msgs_hz"], r["pub_msgs_per_s"], r["pub_busy_percent"],
+              "%.0f" % r["wrenches_sent_per_s"], "%.0f" % r["wrenches_taken_per_s"], r["overruns"],
+              "%.3f" % r["rtf_min"], r["step_mean_us"], r["cpu_percent"], "%.2f" % r["loadavg1"],
+              "yes" if r["passed"] else "no", r.get("note", "")] for r in intake_rows]))
+        md.append("")
 
-    md.append("## 4. Latency: ParticleWrench (zero stamp) -> first ~bodies message reflecting it")
-    md.append("")
-    md.append("One box at rest, rate 1000 Hz. Each trial: wall time before publish(); the first ~bodies message "
-              "(tcp_nodelay, deserialised by rospy) whose linear momentum differs from the one before the "
-              "send; latency = wall time at its callback - send time; then a zero force replaces the push and "
-              "the next trial waits for a constant momentum plus a random 20-50 ms. Includes rospy publish "
-              "and callback overhead on both ends. Expected bound: up to one step (1 ms) until the wrench "
-              "is used, up to 1/publish_rate until the next publish cycle, plus transport. stamp - send = "
-              "the message's stamp (simulation time) minus the send time.")
-    md.append("")
-    md.append(md_table(
-        ["publish_rate Hz", "trials", "median ms", "p90 ms", "min ms", "max ms", "1/publish_rate ms",
-         "stamp - send median ms", "node CPU %", "load avg"],
-        [[r["publish_rate_hz"], r["trials"], "%.2f" % r["latency_median_ms"], "%.2f" % r["latency_p90_ms"],
-          "%.2f" % r["latency_min_ms"], "%.2f" % r["latency_max_ms"], 1e3 / r["publish_rate_hz"],
-          "%.2f" % r["stamp_lag_median_ms"], r["cpu_percent"], "%.2f" % r["loadavg1"]] for r in latency_rows]))
-    md.append("")
+    if latency_rows:
+        md.append("## 4. Latency: ParticleWrench (zero stamp) -> first ~bodies message reflecting it")
+        md.append("")
+        md.append("One box at rest, rate 1000 Hz. Each trial: wall time before publish(); the first ~bodies message "
+                  "(tcp_nodelay, deserialised by rospy) whose linear momentum differs from the one before the "
+                  "send; latency = wall time at its callback - send time; then a zero force replaces the push and "
+                  "the next trial waits for a constant momentum plus a random 20-50 ms. Includes rospy publish "
+                  "and callback overhead on both ends. Expected bound: up to one step (1 ms) until the wrench "
+                  "is used, up to 1/publish_rate until the next publish cycle, plus transport. stamp - send = "
+                  "the message's stamp (simulation time) minus the send time.")
+        md.append("")
+        md.append(md_table(
+            ["publish_rate Hz", "trials", "median ms", "p90 ms", "min ms", "max ms", "1/publish_rate ms",
+             "stamp - send median ms", "node CPU %", "load avg"],
+            [[r["publish_rate_hz"], r["trials"], "%.2f" % r["latency_median_ms"], "%.2f" % r["latency_p90_ms"],
+              "%.2f" % r["latency_min_ms"], "%.2f" % r["latency_max_ms"], 1e3 / r["publish_rate_hz"],
+              "%.2f" % r["stamp_lag_median_ms"], r["cpu_percent"], "%.2f" % r["loadavg1"]] for r in latency_rows]))
+        md.append("")
+
+    if pushed:
+        md.append("## 5. Pushed capacity: part 1 with one held particle force on every body")
+        md.append("")
+        md.append("As part 1, except that before the warm-up every body gets one held force of %g N along world "
+                  "z at its particle 0 (a corner, so a torque too), sent once as ParticleWrenchArray messages of "
+                  "%d entries on ~particle_wrenches (zero stamp, no `wrench_timeout`: held until replaced). "
+                  "Before timing, the script waits for the diagnostics key `held_wrenches` = N with no rejected "
+                  "message, and checks on ~b0/twist and ~b<N-1>/twist that dv_z/dt = F/m (1 kg boxes) within "
+                  "1 %%; the bodies therefore take the loaded SIMD lanes every step."
+                  % (PUSH_FORCE_N, PUSH_ENTRIES_PER_ARRAY))
+        md.append("")
+        md.append(capacity_table(5))
+        md.append("")
+
+    if step_cost:
+        r = step_cost
+        md.append("## 6. ~step through the node against the core's World::Step")
+        md.append("")
+        md.append("The node paused on %d tumbling boxes (the part 1 scene), ~step %d called %d times from one "
+                  "persistent rospy service client after a warm-up ~step 1000; ns per body-step = wall time of "
+                  "the call / (bodies x steps), median over the calls; node CPU = the node's utime + stime "
+                  "over each call (10 ms ticks). Core: `throughput_bench --benchmark_filter=^%s$` on the "
+                  "node's core with its scheduling right after, median of %d repetitions. A `rosservice call` "
+                  "timed from the shell would add the command's own start-up (0.7-1.2 s on this machine, "
+                  "35-60 ns per body-step at this size)."
+                  % (STEP_COST_BODIES, STEP_COST_STEPS, r["trials"], CORE_STEP_BENCHMARK, r["trials"]))
+        md.append("")
+        md.append(md_table(
+            ["bodies", "steps per call", "calls", "node ns per body-step", "node CPU ns per body-step",
+             "core ns per body-step", "node / core", "load avg"],
+            [[r["n_bodies"], STEP_COST_STEPS, r["trials"], r["ns_per_body_step"], r["cpu_ns_per_body_step"],
+              r["core_ns_per_body_step"], "%.2f" % r["node_to_core"], "%.2f" % r["loadavg1"]]]))
+        md.append("")
     return "\n".join(md)
 
 
 def main():
     quick = ARGS.quick
+    every_part = not (ARGS.pushed or ARGS.step_cost)
     start = time.monotonic()
     log("workspace %s, master %s, node on core %d, logs in %s"
         % (WS, os.environ["ROS_MASTER_URI"], ARGS.node_cpu, LOG_DIR))
     start_master(PROCS, ARGS.port, ARGS.bench_cpu, LOG_DIR)
     rospy.init_node("node_load_bench", anonymous=True, disable_signals=True)
     diag = Diagnostics()
-    capacity, cpu_rows, intake_rows, latency_rows = (None, None, None), [], [], []
+    results = {}
     try:
-        # Budgets (s from start) keep the full run under about 5 minutes.
-        capacity = part_capacity(diag, quick, start + (20 if quick else 140))
-        cpu_rows = part_cpu(diag, quick)
-        intake_rows = part_intake(diag, quick, start + (45 if quick else 250))
-        latency_rows = part_latency(diag, quick)
+        # Budgets (s from the start of each scan) keep the full run under about 8 minutes.
+        if every_part:
+            results["capacity"] = part_capacity(diag, quick, start + (20 if quick else 140))
+            results["cpu"] = part_cpu(diag, quick)
+            results["intake"] = part_intake(diag, quick, start + (45 if quick else 250))
+            results["latency"] = part_latency(diag, quick)
+        if every_part or ARGS.pushed:
+            results["pushed"] = part_capacity(diag, quick, time.monotonic() + (20 if quick else 140), pushed=True)
+        if every_part or ARGS.step_cost:
+            results["step_cost"] = part_step_cost(diag, quick)
     finally:
         elapsed = time.monotonic() - start
-        report = write_report(capacity, cpu_rows, intake_rows, latency_rows, quick, elapsed)
+        report = write_report(results, quick, elapsed)
         os.makedirs(ARGS.out, exist_ok=True)
         md_path = os.path.join(ARGS.out, "node_load.md")
         csv_path = os.path.join(ARGS.out, "node_load.csv")
