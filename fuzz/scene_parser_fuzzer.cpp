@@ -43,6 +43,7 @@ using XmlRpc::XmlRpcValue;
 const char* const kKeys[] = {
     "name",   "particles", "mass",   "position",   "orientation", "linear_velocity",
     "angular_velocity", "shape", "size", "radius", "length", "resolution",
+    "gravity_scale", "linear_damping", "angular_damping",
 };
 const char* const kStrings[] = {"box", "sphere", "cylinder", "rod", "a", "b_1", "", "1x",
                                 "has space", "cube", "Body", "x"};
@@ -167,10 +168,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
 
-  std::vector<rigid_body_sim::core::BodyModel> models;
-  std::vector<rigid_body_sim::core::BodyState> states;
+  rigid_body_sim::SceneBodies scene_bodies;
   try {
-    rigid_body_sim::ParseBodies(bodies, &models, &states);
+    rigid_body_sim::ParseBodies(bodies, &scene_bodies);
   } catch (const rigid_body_sim::SceneError& error) {
     if (Verbose()) std::fprintf(stderr, "SceneError: %s\n", error.what());
     return 0;
@@ -178,16 +178,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (Verbose()) std::fprintf(stderr, "std::exception: %s\n", error.what());
     return 0;
   }
+  const std::vector<rigid_body_sim::core::BodyModel>& models = scene_bodies.models;
+  std::vector<rigid_body_sim::core::BodyState> states = scene_bodies.initial_states;
   if (Verbose()) std::fprintf(stderr, "parsed %zu bodies\n", models.size());
   // XmlRpc::XmlRpcException or anything else escapes: libFuzzer reports it.
 
-  if (models.size() != static_cast<std::size_t>(bodies.size()) || states.size() != models.size()) {
-    Fail("one model and one state per entry", 0);
+  if (models.size() != static_cast<std::size_t>(bodies.size()) || states.size() != models.size() ||
+      scene_bodies.properties.size() != models.size()) {
+    Fail("one model, state and set of properties per entry", 0);
   }
   // The node's scene path ends in the World, which checks names and states.
   std::optional<rigid_body_sim::core::World> world;
   try {
-    world.emplace(models, states, rigid_body_sim::core::WorldOptions{});
+    world.emplace(models, states, rigid_body_sim::core::WorldOptions{}, scene_bodies.properties);
   } catch (const std::invalid_argument& error) {
     if (Verbose()) std::fprintf(stderr, "World: %s\n", error.what());
     return 0;

@@ -40,10 +40,12 @@ std::string Entry(std::size_t index, const std::string& name) {
 }  // namespace
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
-             const WorldOptions& options)
+             const WorldOptions& options, std::vector<BodyProperties> properties)
     : models_(std::move(models)),
       initial_states_(std::move(initial_states)),
       states_(initial_states_),
+      properties_(properties.empty() ? std::vector<BodyProperties>(models_.size())
+                                     : std::move(properties)),
       options_(options),
       integrator_(MakeIntegrator(options.integrator)),
       wrenches_(ParticleCounts(models_)),
@@ -51,8 +53,8 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
       loaded_(models_.size(), 0),
       faults_(models_.size(), BodyFault::kNone) {
   if (!(options_.dt_s > 0.0)) throw std::invalid_argument("dt must be > 0");
-  if (states_.size() != models_.size()) {
-    throw std::invalid_argument("one initial state per body is required");
+  if (states_.size() != models_.size() || properties_.size() != models_.size()) {
+    throw std::invalid_argument("one initial state and one set of properties per body is required");
   }
   std::unordered_map<std::string, std::size_t> first_entry;  // name → index of its body
   for (std::size_t i = 0; i < models_.size(); ++i) {
@@ -63,6 +65,8 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
       throw std::invalid_argument(Entry(i, name) + ": name duplicates bodies[" +
                                   std::to_string(previous->second) + "]");
     }
+    const std::string properties_error = PropertiesError(properties_[i]);
+    if (!properties_error.empty()) throw std::invalid_argument(Entry(i, name) + ": " + properties_error);
     if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
     const double turn_bound =
         options_.dt_s * kRateBoundFactor * models_[i].inverse_principal_moments().maxCoeff();
@@ -130,7 +134,9 @@ void World::Step() {
                                               &loads_, &loaded_);
   if (loads_changed && has_gravity_) {
     for (std::size_t i = 0; i < models_.size(); ++i) {
-      loads_[i].AddCentralForce(models_[i].mass() * options_.gravity);
+      const double scale = properties_[i].gravity_scale;
+      if (scale == 0.0) continue;
+      loads_[i].AddCentralForce(scale * models_[i].mass() * options_.gravity);
       loaded_[i] = 1;
     }
   }

@@ -164,7 +164,8 @@ std::vector<core::Particle> ReadShape(const XmlRpcValue& body, const std::string
 
 void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) {
   static const std::set<std::string> kCommonKeys = {
-      "name", "position", "orientation", "linear_velocity", "angular_velocity"};
+      "name",          "position",       "orientation",    "linear_velocity",
+      "angular_velocity", "gravity_scale", "linear_damping", "angular_damping"};
   for (const auto& member : body) {
     if (kCommonKeys.count(member.first) || kind_keys.count(member.first)) continue;
     std::string known;
@@ -192,9 +193,24 @@ Eigen::Quaterniond ReadOrientation(const XmlRpcValue& body) {
   return *unit;
 }
 
+core::BodyProperties ReadProperties(const XmlRpcValue& body) {
+  core::BodyProperties properties;
+  if (body.hasMember("gravity_scale")) {
+    properties.gravity_scale = ReadFiniteNumber(body["gravity_scale"], "gravity_scale");
+  }
+  if (body.hasMember("linear_damping")) {
+    properties.linear_damping_per_s = ReadFiniteNumber(body["linear_damping"], "linear_damping");
+  }
+  if (body.hasMember("angular_damping")) {
+    properties.angular_damping_per_s = ReadFiniteNumber(body["angular_damping"], "angular_damping");
+  }
+  const std::string error = core::PropertiesError(properties);
+  if (!error.empty()) throw SceneError(error);
+  return properties;
+}
+
 // One entry of `bodies`; errors name the key, the caller adds the entry.
-void ParseBody(const XmlRpcValue& body, std::vector<core::BodyModel>* models,
-               std::vector<core::BodyState>* initial_states) {
+void ParseBody(const XmlRpcValue& body, SceneBodies* scene_bodies) {
   const std::string& name = body["name"];
   const bool has_particles = body.hasMember("particles");
   const bool has_shape = body.hasMember("shape");
@@ -217,11 +233,14 @@ void ParseBody(const XmlRpcValue& body, std::vector<core::BodyModel>* models,
   const Eigen::Quaterniond orientation = ReadOrientation(body);
   const Eigen::Vector3d linear_velocity = ReadOptionalVector3(body, "linear_velocity");
   const Eigen::Vector3d angular_velocity = ReadOptionalVector3(body, "angular_velocity");
+  const core::BodyProperties properties = ReadProperties(body);
 
-  models->emplace_back(name, std::move(particles));
+  core::BodyModel model(name, std::move(particles));
   // Unique names and a state within CheckState's bounds are the World's to check.
-  initial_states->push_back(core::StateFromTwist(models->back(), position, orientation,
-                                                 linear_velocity, angular_velocity));
+  scene_bodies->initial_states.push_back(
+      core::StateFromTwist(model, position, orientation, linear_velocity, angular_velocity));
+  scene_bodies->models.push_back(std::move(model));
+  scene_bodies->properties.push_back(properties);
 }
 
 // Private parameters, each with its documented default; errors name "~key".
@@ -314,8 +333,35 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
 
 }  // namespace
 
-void ParseBodies(const XmlRpcValue& bodies, std::vector<core::BodyModel>* models,
-                 std::vector<core::BodyState>* initial_states) {
+void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies) {
+  std::string entry = "bodies[" + std::to_string(index) + "]";
+  if (body.getType() != XmlRpcValue::TypeStruct) {
+    throw SceneError(entry + ": must be a map with a name and particles or a shape, got " +
+                     Describe(body));
+  }
+  if (!body.hasMember("name")) throw SceneError(entry + ": name is missing");
+  const XmlRpcValue& name = body["name"];
+  if (name.getType() != XmlRpcValue::TypeString ||
+      static_cast<const std::string&>(name).empty()) {
+    throw SceneError(entry + ": name must be a non-empty string, got " + Describe(name));
+  }
+  entry += " (name '" + static_cast<const std::string&>(name) + "')";
+  if (static_cast<const std::string&>(name).size() > kMaxNameLength) {
+    throw SceneError(entry + ": name is longer than " + std::to_string(kMaxNameLength) +
+                     " characters");
+  }
+  if (!IsValidBodyName(name)) {
+    throw SceneError(entry + ": name must be a letter then letters, digits or '_' "
+                             "(it names a TF frame and topics)");
+  }
+  try {
+    ParseBody(body, scene_bodies);
+  } catch (const std::exception& error) {  // SceneError, or the core's std::invalid_argument
+    throw SceneError(entry + ": " + error.what());
+  }
+}
+
+void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies) {
   if (bodies.getType() != XmlRpcValue::TypeArray || bodies.size() == 0) {
     throw SceneError("~bodies must be a non-empty list of bodies, got " + Describe(bodies));
   }
@@ -323,34 +369,7 @@ void ParseBodies(const XmlRpcValue& bodies, std::vector<core::BodyModel>* models
     throw SceneError("~bodies has " + std::to_string(bodies.size()) + " entries, at most " +
                      std::to_string(kMaxBodies) + " are allowed");
   }
-  for (int i = 0; i < bodies.size(); ++i) {
-    std::string entry = "bodies[" + std::to_string(i) + "]";
-    const XmlRpcValue& body = bodies[i];
-    if (body.getType() != XmlRpcValue::TypeStruct) {
-      throw SceneError(entry + ": must be a map with a name and particles or a shape, got " +
-                       Describe(body));
-    }
-    if (!body.hasMember("name")) throw SceneError(entry + ": name is missing");
-    const XmlRpcValue& name = body["name"];
-    if (name.getType() != XmlRpcValue::TypeString ||
-        static_cast<const std::string&>(name).empty()) {
-      throw SceneError(entry + ": name must be a non-empty string, got " + Describe(name));
-    }
-    entry += " (name '" + static_cast<const std::string&>(name) + "')";
-    if (static_cast<const std::string&>(name).size() > kMaxNameLength) {
-      throw SceneError(entry + ": name is longer than " + std::to_string(kMaxNameLength) +
-                       " characters");
-    }
-    if (!IsValidBodyName(name)) {
-      throw SceneError(entry + ": name must be a letter then letters, digits or '_' "
-                               "(it names a TF frame and topics)");
-    }
-    try {
-      ParseBody(body, models, initial_states);
-    } catch (const std::exception& error) {  // SceneError, or the core's std::invalid_argument
-      throw SceneError(entry + ": " + error.what());
-    }
-  }
+  for (int i = 0; i < bodies.size(); ++i) ParseBodyEntry(bodies[i], i, scene_bodies);
 }
 
 Scene LoadScene(const ros::NodeHandle& private_nh) {
@@ -360,7 +379,7 @@ Scene LoadScene(const ros::NodeHandle& private_nh) {
   if (!private_nh.getParam("bodies", bodies)) {
     throw SceneError("~bodies is missing (load a scene, e.g. config/default_scene.yaml)");
   }
-  ParseBodies(bodies, &scene.models, &scene.initial_states);
+  ParseBodies(bodies, &scene.bodies);
   return scene;
 }
 

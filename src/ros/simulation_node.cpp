@@ -36,7 +36,8 @@ std::uint64_t PublishEverySteps(const NodeSettings& settings) {
 
 SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
     : settings_(scene.settings),
-      world_(std::move(scene.models), std::move(scene.initial_states), MakeWorldOptions(settings_)),
+      world_(std::move(scene.bodies.models), std::move(scene.bodies.initial_states),
+             MakeWorldOptions(settings_), std::move(scene.bodies.properties)),
       publish_every_steps_(PublishEverySteps(settings_)),
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
       intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix)),

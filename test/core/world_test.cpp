@@ -52,6 +52,41 @@ TEST(World, IsDeterministicToTheBit) {
   }
 }
 
+TEST(World, GravityScalesPerBody) {
+  WorldOptions options;
+  options.dt_s = 0.01;
+  options.gravity = {0.0, 0.0, -9.81};
+  const std::vector<Particle> point = {{2.0, {0.3, -0.1, 0.2}}};
+  const std::vector<BodyModel> models = {BodyModel("plain", point), BodyModel("floating", point),
+                                         BodyModel("heavy", point)};
+  std::vector<BodyProperties> properties(3);
+  properties[1].gravity_scale = 0.0;
+  properties[2].gravity_scale = -2.5;
+  World world(models, std::vector<BodyState>(3), options, properties);
+  constexpr int kSteps = 100;
+  for (int n = 0; n < kSteps; ++n) world.Step();
+  // A constant force is integrated exactly: z = s g t² / 2, p_z = M s g t.
+  const double t = kSteps * options.dt_s;
+  for (std::size_t i = 0; i < 3; ++i) {
+    const double g = properties[i].gravity_scale * options.gravity.z();
+    EXPECT_NEAR(world.state(i).position.z(), 0.5 * g * t * t, 1e-12) << "body " << i;
+    EXPECT_NEAR(world.state(i).linear_momentum.z(), models[i].mass() * g * t, 1e-12) << "body " << i;
+  }
+  EXPECT_EQ(world.state(1).position.z(), 0.0);
+}
+
+TEST(World, RejectsPropertiesItCannotSimulate) {
+  std::vector<BodyProperties> properties(1);
+  properties[0].angular_damping_per_s = -1.0;
+  try {
+    World({test::PointBody()}, {BodyState{}}, WorldOptions{}, properties);
+    FAIL() << "negative damping accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_NE(std::string(error.what()).find("angular_damping must be a finite number >= 0"),
+              std::string::npos);
+  }
+}
+
 TEST(World, GravityAndWrenchesFollowTheirStartTimes) {
   WorldOptions options;
   options.dt_s = 0.01;

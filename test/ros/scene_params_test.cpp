@@ -47,10 +47,9 @@ XmlRpcValue List(std::initializer_list<XmlRpcValue> entries) {
 
 // The SceneError message of parsing `bodies`, or "" when it parses.
 std::string ErrorOf(const XmlRpcValue& bodies) {
-  std::vector<core::BodyModel> models;
-  std::vector<core::BodyState> states;
+  SceneBodies scene_bodies;
   try {
-    ParseBodies(bodies, &models, &states);
+    ParseBodies(bodies, &scene_bodies);
   } catch (const SceneError& error) {
     return error.what();
   }
@@ -66,9 +65,10 @@ TEST(SceneParams, ParticlesAndShapesBecomeModelsAndStates) {
   box["resolution"] = 2;
   box["orientation"].setSize(4);
   for (int k = 0; k < 4; ++k) box["orientation"][k] = k == 3 ? 2.0 : 0.0;  // normalised
-  std::vector<core::BodyModel> models;
-  std::vector<core::BodyState> states;
-  ParseBodies(List({Dumbbell("bell"), box}), &models, &states);
+  SceneBodies scene_bodies;
+  ParseBodies(List({Dumbbell("bell"), box}), &scene_bodies);
+  const std::vector<core::BodyModel>& models = scene_bodies.models;
+  const std::vector<core::BodyState>& states = scene_bodies.initial_states;
   ASSERT_EQ(models.size(), 2u);
   ASSERT_EQ(states.size(), 2u);
   EXPECT_EQ(models[0].name(), "bell");
@@ -106,12 +106,40 @@ TEST(SceneParams, ErrorsNameTheEntryAndTheKey) {
   EXPECT_NE(ErrorOf(XmlRpcValue()).find("~bodies must be a non-empty list"), std::string::npos);
 }
 
+TEST(SceneParams, GravityScaleAndDampingAreReadAndChecked) {
+  XmlRpcValue floating = Dumbbell("floating");
+  floating["gravity_scale"] = 0;
+  floating["linear_damping"] = 0.5;
+  floating["angular_damping"] = 2;
+  SceneBodies scene_bodies;
+  ParseBodies(List({Dumbbell("plain"), floating}), &scene_bodies);
+  ASSERT_EQ(scene_bodies.properties.size(), 2u);
+  EXPECT_EQ(scene_bodies.properties[0].gravity_scale, 1.0);
+  EXPECT_EQ(scene_bodies.properties[0].linear_damping_per_s, 0.0);
+  EXPECT_EQ(scene_bodies.properties[1].gravity_scale, 0.0);
+  EXPECT_EQ(scene_bodies.properties[1].linear_damping_per_s, 0.5);
+  EXPECT_EQ(scene_bodies.properties[1].angular_damping_per_s, 2.0);
+
+  XmlRpcValue negative = Dumbbell("negative");
+  negative["linear_damping"] = -1.0;
+  EXPECT_EQ(ErrorOf(List({negative})),
+            "bodies[0] (name 'negative'): linear_damping must be a finite number >= 0 [1/s], got -1");
+  XmlRpcValue infinite = Dumbbell("infinite");
+  infinite["gravity_scale"] = std::numeric_limits<double>::infinity();
+  EXPECT_EQ(ErrorOf(List({Dumbbell("a"), infinite})),
+            "bodies[1] (name 'infinite'): gravity_scale must be a finite number, got inf");
+  XmlRpcValue text = Dumbbell("text");
+  text["angular_damping"] = "lots";
+  EXPECT_EQ(ErrorOf(List({text})),
+            "bodies[0] (name 'text'): angular_damping must be a finite number, got 'lots'");
+}
+
 TEST(SceneParams, NamesAndStatesAreCheckedByTheWorldBuiltFromTheScene) {
-  std::vector<core::BodyModel> models;
-  std::vector<core::BodyState> states;
-  ParseBodies(List({Dumbbell("twin"), Dumbbell("twin")}), &models, &states);
+  SceneBodies scene_bodies;
+  ParseBodies(List({Dumbbell("twin"), Dumbbell("twin")}), &scene_bodies);
   try {
-    core::World(models, states, core::WorldOptions{});
+    core::World(scene_bodies.models, scene_bodies.initial_states, core::WorldOptions{},
+                scene_bodies.properties);
     FAIL() << "duplicate names accepted";
   } catch (const std::invalid_argument& error) {
     EXPECT_STREQ(error.what(), "bodies[1] (name 'twin'): name duplicates bodies[0]");

@@ -12,6 +12,7 @@
 
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_properties.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
@@ -38,15 +39,18 @@ constexpr double kMaxSubstepAngle = 0.04;
 class World {
  public:
   // Throws std::invalid_argument on an unknown integrator, dt <= 0, duplicate
-  // or empty body names, a states/models size mismatch, or an initial state
-  // that CheckState rejects, each named as "bodies[i] (name 'n'): ...".
-  // These are the scene's only checks of names and initial states.
+  // or empty body names, a states/models (or non-empty properties) size
+  // mismatch, an initial state that CheckState rejects, or properties that
+  // PropertiesError rejects, each named as "bodies[i] (name 'n'): ...".
+  // These are the scene's only checks of names and initial states. Empty
+  // `properties` gives every body the defaults.
   World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
-        const WorldOptions& options);
+        const WorldOptions& options, std::vector<BodyProperties> properties = {});
 
   std::size_t size() const { return models_.size(); }
   const BodyModel& model(std::size_t body) const { return models_[body]; }
   const BodyState& state(std::size_t body) const { return states_[body]; }
+  const BodyProperties& properties(std::size_t body) const { return properties_[body]; }
   const std::vector<BodyModel>& models() const { return models_; }
   const std::vector<BodyState>& states() const { return states_; }
   std::optional<std::size_t> FindBody(const std::string& name) const;
@@ -105,6 +109,7 @@ class World {
   std::vector<BodyModel> models_;
   std::vector<BodyState> initial_states_;
   std::vector<BodyState> states_;
+  std::vector<BodyProperties> properties_;
   WorldOptions options_;
   std::unique_ptr<Integrator> integrator_;
   WrenchTable wrenches_;

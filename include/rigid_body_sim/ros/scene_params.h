@@ -12,6 +12,7 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_properties.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/world.h"
@@ -36,10 +37,17 @@ struct NodeSettings {
   std::uint32_t max_substeps = core::WorldOptions{}.max_substeps;
 };
 
+// The bodies of a scene, in its order: one model, initial state and set of
+// properties each.
+struct SceneBodies {
+  std::vector<core::BodyModel> models;
+  std::vector<core::BodyState> initial_states;
+  std::vector<core::BodyProperties> properties;
+};
+
 struct Scene {
   NodeSettings settings;
-  std::vector<core::BodyModel> models;            // in scene order
-  std::vector<core::BodyState> initial_states;    // one per model
+  SceneBodies bodies;
 };
 
 // An invalid scene or parameter; what() is one line naming the entry and key,
@@ -57,7 +65,11 @@ Scene LoadScene(const ros::NodeHandle& private_nh);
 // so that it can be checked without a master. Throws SceneError. Unique
 // names and initial states within core::CheckState's bounds are checked by
 // the core::World built from the result.
-void ParseBodies(const XmlRpc::XmlRpcValue& bodies, std::vector<core::BodyModel>* models,
-                 std::vector<core::BodyState>* initial_states);
+void ParseBodies(const XmlRpc::XmlRpcValue& bodies, SceneBodies* scene_bodies);
+
+// One entry of `bodies`, as it would be checked at index `index` of the
+// list, appended to `scene_bodies`. Throws SceneError ("bodies[i] (name
+// 'n'): ..."); appends nothing then.
+void ParseBodyEntry(const XmlRpc::XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies);
 
 }  // namespace rigid_body_sim
