@@ -51,32 +51,16 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
       wrenches_(ParticleCounts(models_)),
       loads_(models_.size()),
       loaded_(models_.size(), 0),
-      faults_(models_.size(), BodyFault::kNone) {
+      faults_(models_.size(), BodyFault::kNone),
+      one_step_momentum_sq_(models_.size(), 0.0) {
   if (!(options_.dt_s > 0.0)) throw std::invalid_argument("dt must be > 0");
   if (states_.size() != models_.size() || properties_.size() != models_.size()) {
     throw std::invalid_argument("one initial state and one set of properties per body is required");
   }
-  std::unordered_map<std::string, std::size_t> first_entry;  // name → index of its body
   for (std::size_t i = 0; i < models_.size(); ++i) {
-    const std::string& name = models_[i].name();
-    if (name.empty()) throw std::invalid_argument(Entry(i, name) + ": name must not be empty");
-    const auto [previous, inserted] = first_entry.emplace(name, i);
-    if (!inserted) {
-      throw std::invalid_argument(Entry(i, name) + ": name duplicates bodies[" +
-                                  std::to_string(previous->second) + "]");
-    }
-    const std::string properties_error = PropertiesError(properties_[i]);
-    if (!properties_error.empty()) throw std::invalid_argument(Entry(i, name) + ": " + properties_error);
-    if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
-    const double turn_bound =
-        options_.dt_s * kRateBoundFactor * models_[i].inverse_principal_moments().maxCoeff();
-    const double reach = kMaxSubstepAngle / turn_bound;  // inf for a point mass
-    one_step_momentum_sq_.push_back(reach * reach);
-    BodyFault fault = CheckState(models_[i], states_[i]);
-    if (fault == BodyFault::kNone && SubstepsFor(i, states_[i]) == 0) fault = BodyFault::kSpinAliased;
-    if (fault != BodyFault::kNone) {
-      throw std::invalid_argument(Entry(i, name) + ": initial state is " + ToString(fault));
-    }
+    PrepareBody(i);
+    CheckBody(i);
+    body_index_.emplace(models_[i].name(), i);
   }
   has_gravity_ = !options_.gravity.isZero(0.0);
   free_batch_.reserve(kBatch);
@@ -85,11 +69,88 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
   loaded_batch_before_.reserve(kBatch);
 }
 
-std::optional<std::size_t> World::FindBody(const std::string& name) const {
-  for (std::size_t i = 0; i < models_.size(); ++i) {
-    if (models_[i].name() == name) return i;
+void World::CheckBody(std::size_t i) const {
+  const std::string& name = models_[i].name();
+  if (name.empty()) throw std::invalid_argument(Entry(i, name) + ": name must not be empty");
+  const auto first = body_index_.find(name);
+  if (first != body_index_.end() && first->second != i) {
+    throw std::invalid_argument(Entry(i, name) + ": name duplicates bodies[" +
+                                std::to_string(first->second) + "]");
   }
-  return std::nullopt;
+  const std::string properties_error = PropertiesError(properties_[i]);
+  if (!properties_error.empty()) throw std::invalid_argument(Entry(i, name) + ": " + properties_error);
+  BodyFault fault = CheckState(models_[i], states_[i]);
+  if (fault == BodyFault::kNone && SubstepsFor(i, states_[i]) == 0) fault = BodyFault::kSpinAliased;
+  if (fault != BodyFault::kNone) {
+    throw std::invalid_argument(Entry(i, name) + ": initial state is " + ToString(fault));
+  }
+}
+
+void World::PrepareBody(std::size_t i) {
+  if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
+  const double turn_bound =
+      options_.dt_s * kRateBoundFactor * models_[i].inverse_principal_moments().maxCoeff();
+  const double reach = kMaxSubstepAngle / turn_bound;  // inf for a point mass
+  one_step_momentum_sq_[i] = reach * reach;
+}
+
+void World::AddBody(BodyModel model, const BodyState& initial_state,
+                    const BodyProperties& properties) {
+  models_.push_back(std::move(model));
+  initial_states_.push_back(initial_state);
+  states_.push_back(initial_state);
+  properties_.push_back(properties);
+  loads_.emplace_back();
+  loaded_.push_back(0);
+  faults_.push_back(BodyFault::kNone);
+  one_step_momentum_sq_.push_back(0.0);
+  const std::size_t body = models_.size() - 1;
+  try {
+    PrepareBody(body);
+    CheckBody(body);
+  } catch (...) {
+    RemoveLast();
+    throw;
+  }
+  body_index_.emplace(models_[body].name(), body);
+  wrenches_.AddBody(models_[body].particle_count());  // sums again, with gravity on the new body
+}
+
+void World::RemoveLast() {
+  models_.pop_back();
+  initial_states_.pop_back();
+  states_.pop_back();
+  properties_.pop_back();
+  loads_.pop_back();
+  loaded_.pop_back();
+  faults_.pop_back();
+  one_step_momentum_sq_.pop_back();
+}
+
+void World::RemoveBody(std::size_t body) {
+  const auto at = [body](auto& per_body) {
+    per_body.erase(per_body.begin() + static_cast<std::ptrdiff_t>(body));
+  };
+  if (faults_[body] != BodyFault::kNone) --frozen_count_;
+  body_index_.erase(models_[body].name());
+  for (auto& [name, index] : body_index_) {
+    if (index > body) --index;
+  }
+  at(models_);
+  at(initial_states_);
+  at(states_);
+  at(properties_);
+  at(loads_);
+  at(loaded_);
+  at(faults_);
+  at(one_step_momentum_sq_);
+  wrenches_.RemoveBody(body);  // sums again: loads_ moved with their bodies
+}
+
+std::optional<std::size_t> World::FindBody(const std::string& name) const {
+  const auto body = body_index_.find(name);
+  if (body == body_index_.end()) return std::nullopt;
+  return body->second;
 }
 
 std::uint32_t World::SubstepsFor(std::size_t body, const BodyState& state) const {

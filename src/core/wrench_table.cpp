@@ -8,18 +8,90 @@
 namespace rigid_body_sim::core {
 
 WrenchTable::WrenchTable(std::vector<std::size_t> particle_counts)
-    : particle_counts_(std::move(particle_counts)) {}
+    : particle_counts_(std::move(particle_counts)), jobs_per_body_(particle_counts_.size(), 0) {}
+
+void WrenchTable::HoldEntry(const Entry& entry) {
+  assert(entry.body < particle_counts_.size());
+  assert(entry.force.allFinite() && entry.couple.allFinite() && std::isfinite(entry.start_s));
+  reduced_ = false;
+  const auto [it, inserted] = index_.try_emplace(Key(entry), entries_.size());
+  if (inserted) {
+    entries_.push_back(entry);
+  } else {
+    entries_[it->second] = entry;
+  }
+}
 
 void WrenchTable::Hold(const ParticleWrench& wrench) {
-  assert(wrench.body < particle_counts_.size());
-  assert(wrench.particle < particle_counts_[wrench.body]);
-  assert(wrench.force.allFinite() && wrench.couple.allFinite() && std::isfinite(wrench.start_s));
+  assert(wrench.body < particle_counts_.size() && wrench.particle < particle_counts_[wrench.body]);
+  Entry entry;
+  entry.kind = Entry::Kind::kParticle;
+  entry.axes = wrench.axes;
+  entry.body = wrench.body;
+  entry.particle = wrench.particle;
+  entry.force = wrench.force;
+  entry.couple = wrench.couple;
+  entry.start_s = wrench.start_s;
+  HoldEntry(entry);
+}
+
+void WrenchTable::HoldBodyWrench(const BodyWrench& wrench) {
+  Entry entry;
+  entry.kind = Entry::Kind::kBody;
+  entry.axes = wrench.axes;
+  entry.body = wrench.body;
+  entry.force = wrench.force;
+  entry.couple = wrench.couple;
+  entry.start_s = wrench.start_s;
+  HoldEntry(entry);
+}
+
+JobRefusal WrenchTable::AddJob(const WrenchJob& job, double t_s) {
+  assert(job.body < particle_counts_.size());
+  assert(job.force.allFinite() && job.couple.allFinite() && job.point_m.allFinite());
+  assert(std::isfinite(job.start_s) && !std::isnan(job.end_s));
+  if (jobs_per_body_[job.body] >= kMaxJobsPerBody || job_count_ >= kMaxJobs) DropEndedJobs(t_s);
+  if (jobs_per_body_[job.body] >= kMaxJobsPerBody) return JobRefusal::kBodyFull;
+  if (job_count_ >= kMaxJobs) return JobRefusal::kTableFull;
   reduced_ = false;
-  const auto [it, inserted] = index_.try_emplace(Key(wrench.body, wrench.particle), entries_.size());
-  if (inserted) {
-    entries_.push_back(wrench);
+  Entry entry;
+  entry.kind = Entry::Kind::kJob;
+  entry.axes = job.axes;
+  entry.body = job.body;
+  entry.force = job.force;
+  entry.couple = job.couple;
+  entry.point_m = job.point_m;
+  entry.start_s = job.start_s;
+  entry.end_s = job.end_s;
+  entries_.push_back(entry);
+  ++jobs_per_body_[job.body];
+  ++job_count_;
+  return JobRefusal::kNone;
+}
+
+void WrenchTable::Erase(std::size_t i) {
+  const Entry& entry = entries_[i];
+  if (entry.kind == Entry::Kind::kJob) {
+    --jobs_per_body_[entry.body];
+    --job_count_;
   } else {
-    entries_[it->second] = wrench;
+    index_.erase(Key(entry));
+  }
+  if (i + 1 != entries_.size()) {
+    entries_[i] = entries_.back();
+    if (entries_[i].kind != Entry::Kind::kJob) index_[Key(entries_[i])] = i;
+  }
+  entries_.pop_back();
+}
+
+void WrenchTable::DropEndedJobs(double t_s) {
+  for (std::size_t i = 0; i < entries_.size();) {
+    if (entries_[i].kind == Entry::Kind::kJob && !(t_s < entries_[i].end_s)) {
+      Erase(i);
+      reduced_ = false;
+    } else {
+      ++i;
+    }
   }
 }
 
@@ -27,6 +99,43 @@ void WrenchTable::Clear() {
   reduced_ = false;
   entries_.clear();
   index_.clear();
+  std::fill(jobs_per_body_.begin(), jobs_per_body_.end(), 0);
+  job_count_ = 0;
+}
+
+void WrenchTable::ClearBody(std::size_t body) {
+  for (std::size_t i = 0; i < entries_.size();) {
+    if (entries_[i].body == body) {
+      Erase(i);
+      reduced_ = false;
+    } else {
+      ++i;
+    }
+  }
+}
+
+void WrenchTable::AddBody(std::size_t particle_count) {
+  particle_counts_.push_back(particle_count);
+  jobs_per_body_.push_back(0);
+  reduced_ = false;
+}
+
+void WrenchTable::RemoveBody(std::size_t body) {
+  ClearBody(body);
+  particle_counts_.erase(particle_counts_.begin() + static_cast<std::ptrdiff_t>(body));
+  jobs_per_body_.erase(jobs_per_body_.begin() + static_cast<std::ptrdiff_t>(body));
+  for (Entry& entry : entries_) {
+    if (entry.body > body) --entry.body;
+  }
+  Reindex();
+  reduced_ = false;
+}
+
+void WrenchTable::Reindex() {
+  index_.clear();
+  for (std::size_t i = 0; i < entries_.size(); ++i) {
+    if (entries_[i].kind != Entry::Kind::kJob) index_.emplace(Key(entries_[i]), i);
+  }
 }
 
 bool WrenchTable::Reduce(double t_s, double timeout_s, double tolerance_s,
@@ -50,32 +159,36 @@ bool WrenchTable::Reduce(double t_s, double timeout_s, double tolerance_s,
     }
   }
   for (std::size_t i = 0; i < entries_.size();) {
-    const ParticleWrench& wrench = entries_[i];
-    const double expiry_s = wrench.start_s + timeout_s - tolerance_s;
-    if (timeout_s > 0.0 && t_s > expiry_s) {
-      // Expired for good (time only goes forward): swap-remove it.
-      index_.erase(Key(wrench.body, wrench.particle));
-      if (i + 1 != entries_.size()) {
-        entries_[i] = entries_.back();
-        index_[Key(entries_[i].body, entries_[i].particle)] = i;
-      }
-      entries_.pop_back();
+    const Entry& entry = entries_[i];
+    const bool is_job = entry.kind == Entry::Kind::kJob;
+    const bool ends = is_job ? std::isfinite(entry.end_s) : timeout_s > 0.0;
+    const double expiry_s = (is_job ? entry.end_s : entry.start_s + timeout_s) - tolerance_s;
+    if (ends && t_s > expiry_s) {
+      Erase(i);  // expired for good: time only goes forward
       continue;
     }
-    if (timeout_s > 0.0) next_expiry_s_ = std::min(next_expiry_s_, expiry_s);
-    if (wrench.start_s > t_s + tolerance_s) {
-      next_start_s_ = std::min(next_start_s_, wrench.start_s);
+    if (ends) next_expiry_s_ = std::min(next_expiry_s_, expiry_s);
+    if (entry.start_s > t_s + tolerance_s) {
+      next_start_s_ = std::min(next_start_s_, entry.start_s);
     } else {
-      HeldLoads& body_loads = (*loads)[wrench.body];
-      const Eigen::Vector3d& offset = models[wrench.body].particle_offsets()[wrench.particle];
-      if (wrench.axes == WrenchAxes::kWorld) {
-        body_loads.AddWorldForce(wrench.force, offset);
-        body_loads.AddWorldCouple(wrench.couple);
+      HeldLoads& body_loads = (*loads)[entry.body];
+      (*loaded)[entry.body] = 1;
+      if (entry.kind == Entry::Kind::kBody && entry.axes == WrenchAxes::kWorld) {
+        // At the COM: a world-axes force alone leaves the body torque-free.
+        body_loads.AddCentralForce(entry.force);
+        if (!entry.couple.isZero(0.0)) body_loads.AddWorldCouple(entry.couple);
       } else {
-        body_loads.AddBodyForce(wrench.force, offset);
-        body_loads.AddBodyCouple(wrench.couple);
+        const Eigen::Vector3d offset = entry.kind == Entry::Kind::kParticle
+                                           ? models[entry.body].particle_offsets()[entry.particle]
+                                           : entry.point_m;  // zero for a body wrench
+        if (entry.axes == WrenchAxes::kWorld) {
+          body_loads.AddWorldForce(entry.force, offset);
+          body_loads.AddWorldCouple(entry.couple);
+        } else {
+          body_loads.AddBodyForce(entry.force, offset);
+          body_loads.AddBodyCouple(entry.couple);
+        }
       }
-      (*loaded)[wrench.body] = 1;
     }
     ++i;
   }

@@ -87,6 +87,63 @@ TEST(World, RejectsPropertiesItCannotSimulate) {
   }
 }
 
+TEST(World, AddedBodyMovesFromTheNextStepAndResetsToItsAddedState) {
+  WorldOptions options;
+  options.dt_s = 0.01;
+  options.gravity = {0.0, 0.0, -9.81};
+  World world = MakeWorld(options);
+  for (int n = 0; n < 10; ++n) world.Step();
+  BodyState start;
+  start.position = {1.0, 2.0, 3.0};
+  BodyProperties floating;
+  floating.gravity_scale = 0.5;
+  world.AddBody(BodyModel("late", {{2.0, {0.0, 0.0, 0.0}}}), start, floating);
+  ASSERT_EQ(world.size(), 5u);
+  EXPECT_EQ(world.FindBody("late"), std::optional<std::size_t>(4));
+  for (int n = 0; n < 20; ++n) world.Step();
+  const double t = 20 * options.dt_s;
+  EXPECT_NEAR(world.state(4).position.z(), 3.0 - 0.5 * 0.5 * 9.81 * t * t, 1e-12);
+  world.Reset();
+  EXPECT_EQ(world.state(4).position, start.position);
+}
+
+TEST(World, RefusedBodyLeavesTheWorldAsItWas) {
+  World world = MakeWorld(WorldOptions{});
+  try {
+    world.AddBody(test::RodBody(), BodyState{}, BodyProperties{});
+    FAIL() << "duplicate name accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(), "bodies[4] (name 'rod'): name duplicates bodies[1]");
+  }
+  BodyProperties negative;
+  negative.linear_damping_per_s = -1.0;
+  EXPECT_THROW(world.AddBody(BodyModel("fresh", {{1.0, {0, 0, 0}}}), BodyState{}, negative),
+               std::invalid_argument);
+  EXPECT_EQ(world.size(), 4u);
+  EXPECT_FALSE(world.FindBody("fresh"));
+  world.Step();
+}
+
+TEST(World, RemovedBodyTakesItsWrenchesAndTheOthersKeepTheirs) {
+  World world = MakeWorld(WorldOptions{});
+  ParticleWrench push;
+  push.body = 2;  // the point body, after the one removed
+  push.force = {4.0, 0.0, 0.0};
+  world.HoldWrench(push);
+  push.body = 1;
+  world.HoldWrench(push);
+  const BodyState point_before = world.state(2);
+  world.RemoveBody(1);
+  ASSERT_EQ(world.size(), 3u);
+  EXPECT_EQ(world.FindBody("point"), std::optional<std::size_t>(1));
+  EXPECT_FALSE(world.FindBody("rod"));
+  EXPECT_EQ(world.FindBody("box"), std::optional<std::size_t>(2));
+  world.Step();
+  // Δp = F dt on the point body, which moved down to index 1.
+  EXPECT_NEAR(world.state(1).linear_momentum.x() - point_before.linear_momentum.x(),
+              4.0 * world.options().dt_s, 1e-15);
+}
+
 TEST(World, GravityAndWrenchesFollowTheirStartTimes) {
   WorldOptions options;
   options.dt_s = 0.01;

@@ -1,3 +1,4 @@
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
@@ -135,6 +136,107 @@ TEST_F(WrenchTableTest, KeptSumsEqualSumsFromScratchAtEveryStep) {
   }
   // Once per change at most: 8 starts, 8 expiries, the second hold and the first call.
   EXPECT_LE(sums, 18);
+}
+
+TEST_F(WrenchTableTest, BodyWrenchActsAtTheComAddsToParticleWrenchesAndReplacesItself) {
+  const Eigen::Matrix3d a = Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()).toRotationMatrix();
+  table_.Hold(WorldForce(0, 1, {1, 0, 0}));
+  BodyWrench body_wrench;
+  body_wrench.body = 0;
+  body_wrench.axes = WrenchAxes::kBody;
+  body_wrench.force = {0.0, 5.0, 0.0};
+  body_wrench.couple = {0.0, 0.0, 2.0};
+  table_.HoldBodyWrench(body_wrench);
+  body_wrench.force = {0.0, 3.0, 0.0};  // replaces the first
+  table_.HoldBodyWrench(body_wrench);
+  const Wrench reduced = Reduced(0.0, 0.0, 0, a);
+  const Eigen::Vector3d particle_force(1, 0, 0);
+  const Eigen::Vector3d r = a * models_[0].particle_offsets()[1];
+  EXPECT_TRUE(reduced.force.isApprox(particle_force + a * body_wrench.force, 1e-14));
+  EXPECT_TRUE(reduced.torque.isApprox(r.cross(particle_force) + a * body_wrench.couple, 1e-14));
+  EXPECT_EQ(table_.size(), 2u);
+}
+
+TEST_F(WrenchTableTest, WorldBodyWrenchWithoutCoupleLeavesTheBodyTorqueFree) {
+  BodyWrench push;
+  push.body = 1;
+  push.force = {0.0, 0.0, 4.0};
+  table_.HoldBodyWrench(push);
+  Reduced(0.0, 0.0, 1, Eigen::Matrix3d::Identity());
+  EXPECT_FALSE(loads_[1].has_torque());
+}
+
+TEST_F(WrenchTableTest, JobActsAtItsPointOverItsWindowAndIsThenForgotten) {
+  // As a particle at the job's point would: τ = (A r̄) × f.
+  const Eigen::Matrix3d a = Eigen::AngleAxisd(-1.1, Eigen::Vector3d(0, 1, 1).normalized()).toRotationMatrix();
+  WrenchJob job;
+  job.body = 1;
+  job.force = {0.0, 2.0, 0.0};
+  job.point_m = {0.5, 0.0, 0.0};
+  job.start_s = 0.1;
+  job.end_s = 0.3;
+  ASSERT_EQ(table_.AddJob(job, 0.0), JobRefusal::kNone);
+  ASSERT_EQ(table_.AddJob(job, 0.0), JobRefusal::kNone);  // jobs add up
+  EXPECT_EQ(Reduced(0.09, 0.0, 1, a).force, Eigen::Vector3d::Zero());
+  for (double t : {0.1, 0.2, 0.29}) {
+    const Wrench w = Reduced(t, 0.0, 1, a);
+    EXPECT_TRUE(w.force.isApprox(2.0 * job.force, 1e-15)) << t;
+    EXPECT_TRUE(w.torque.isApprox(2.0 * (a * job.point_m).cross(job.force), 1e-14)) << t;
+  }
+  // The wrench timeout does not apply to jobs.
+  EXPECT_TRUE(Reduced(0.2, 0.05, 1, a).force.isApprox(2.0 * job.force, 1e-15));
+  EXPECT_EQ(Reduced(0.3, 0.0, 1, a).force, Eigen::Vector3d::Zero());
+  EXPECT_EQ(table_.job_count(), 0u);
+  EXPECT_EQ(table_.size(), 0u);
+}
+
+TEST_F(WrenchTableTest, JobsAreCappedPerBodyCountingOnlyLiveOnes) {
+  WrenchJob job;
+  job.body = 0;
+  job.force = {1.0, 0.0, 0.0};
+  job.end_s = 1.0;
+  for (std::size_t k = 0; k < WrenchTable::kMaxJobsPerBody; ++k) {
+    ASSERT_EQ(table_.AddJob(job, 0.0), JobRefusal::kNone);
+  }
+  EXPECT_EQ(table_.AddJob(job, 0.0), JobRefusal::kBodyFull);
+  job.body = 1;
+  EXPECT_EQ(table_.AddJob(job, 0.0), JobRefusal::kNone);  // another body has room
+  job.body = 0;
+  EXPECT_EQ(table_.AddJob(job, 1.0), JobRefusal::kNone);  // the others ended at 1.0
+  EXPECT_EQ(table_.job_count(0), 1u);
+  EXPECT_EQ(table_.job_count(), 1u);  // body 1's ended at 1.0 too
+}
+
+TEST_F(WrenchTableTest, ClearBodyDropsOneBodysWrenchesOnly) {
+  table_.Hold(WorldForce(0, 1, {1, 0, 0}));
+  table_.Hold(WorldForce(1, 0, {0, 1, 0}));
+  BodyWrench push;
+  push.body = 0;
+  push.force = {0, 0, 1};
+  table_.HoldBodyWrench(push);
+  WrenchJob job;
+  job.body = 0;
+  job.end_s = std::numeric_limits<double>::infinity();
+  table_.AddJob(job, 0.0);
+  table_.ClearBody(0);
+  EXPECT_EQ(table_.size(), 1u);
+  EXPECT_EQ(table_.job_count(0), 0u);
+  Reduced(0.0, 0.0, 0, Eigen::Matrix3d::Identity());
+  EXPECT_FALSE(loaded_[0]);
+  EXPECT_TRUE(loaded_[1]);
+}
+
+TEST_F(WrenchTableTest, RemovedBodysWrenchesGoAndLaterBodiesMoveDown) {
+  table_.AddBody(2);  // body 2
+  table_.Hold(WorldForce(0, 1, {1, 0, 0}));
+  table_.Hold(WorldForce(2, 1, {0, 7, 0}));
+  table_.RemoveBody(0);
+  models_ = {test::RodBody(), test::Diag123Body()};  // the diag body is now body 1
+  table_.Hold(WorldForce(1, 0, {0, 0, 3}));  // adds to the moved one, on another particle
+  table_.Hold(WorldForce(1, 1, {0, 9, 0}));  // replaces the moved one
+  const Wrench w = Reduced(0.0, 0.0, 1, Eigen::Matrix3d::Identity());
+  EXPECT_EQ(w.force, Eigen::Vector3d(0, 9, 3));
+  EXPECT_FALSE(loaded_[0]);
 }
 
 }  // namespace

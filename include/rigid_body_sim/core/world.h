@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -78,6 +79,13 @@ class World {
   // Every body back to its initial state, wrenches cleared, faults cleared;
   // time goes on.
   void Reset();
+  // Appends a body that moves from `initial_state` at the next step; its
+  // initial state is also what Reset brings it back to. Throws
+  // std::invalid_argument, naming the entry as "bodies[size()] (name 'n')", on
+  // the constructor's checks; the world is unchanged then.
+  void AddBody(BodyModel model, const BodyState& initial_state, const BodyProperties& properties);
+  // Removes `body` and its wrenches; the bodies after it move down by one.
+  void RemoveBody(std::size_t body);
   // Also clears the body's fault.
   void SetBodyState(std::size_t body, const BodyState& state);
 
@@ -87,7 +95,13 @@ class World {
 
   // Holds a checked particle wrench (WrenchTable::Hold).
   void HoldWrench(const ParticleWrench& wrench) { wrenches_.Hold(wrench); }
+  // Holds a checked body wrench (WrenchTable::HoldBodyWrench).
+  void HoldBodyWrench(const BodyWrench& wrench) { wrenches_.HoldBodyWrench(wrench); }
+  // Adds a checked job (WrenchTable::AddJob), counting live jobs at the next step.
+  JobRefusal AddWrenchJob(const WrenchJob& job) { return wrenches_.AddJob(job, time()); }
   void ClearWrenches() { wrenches_.Clear(); }
+  // Drops `body`'s particle wrenches, body wrench and jobs.
+  void ClearBodyWrenches(std::size_t body) { wrenches_.ClearBody(body); }
   const WrenchTable& wrenches() const { return wrenches_; }
 
   // Steps in which a body's pure couple had a component along a null
@@ -100,6 +114,13 @@ class World {
   // is frozen).
   void FinishStep(std::size_t body, const BodyState& before);
   void Freeze(std::size_t body, BodyFault fault);
+  // The constructor's checks of body i's name (against bodies 0 … i−1),
+  // properties and initial state; throws std::invalid_argument.
+  void CheckBody(std::size_t i) const;
+  // Body i's per-body constants: torque projector, one-step bound.
+  void PrepareBody(std::size_t i);
+  // Undoes the appends of AddBody.
+  void RemoveLast();
   // Steps the bodies in free_batch_ through StepFree, checks each, and
   // empties it.
   void StepFreeBatch();
@@ -110,6 +131,7 @@ class World {
   std::vector<BodyState> initial_states_;
   std::vector<BodyState> states_;
   std::vector<BodyProperties> properties_;
+  std::unordered_map<std::string, std::size_t> body_index_;  // name → index
   WorldOptions options_;
   std::unique_ptr<Integrator> integrator_;
   WrenchTable wrenches_;

@@ -1,6 +1,9 @@
-// The particle wrenches held by the world (doc/node.md, "Time, frames and pacing"):
-// one per (body, particle), replaced by a later one for the same particle,
-// active from its start time and, with a timeout, until start + timeout.
+// The wrenches held by the world (doc/node.md, "Time, frames and pacing" and
+// "Wrenches on a whole body"): particle wrenches, one per (body, particle),
+// and body wrenches, one per body, each replaced by a later one for the same
+// particle or body, active from its start time and, with a timeout, until
+// start + timeout; and wrench jobs, any number per body up to a limit, each
+// active over its own window and never replaced.
 #pragma once
 
 #include <cstddef>
@@ -26,6 +29,31 @@ struct ParticleWrench {
   double start_s = 0.0;                              // active from this simulation time
 };
 
+// A force at the COM and a couple, on the whole body.
+struct BodyWrench {
+  std::size_t body = 0;
+  WrenchAxes axes = WrenchAxes::kWorld;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // [N], at the COM
+  Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // [N m]
+  double start_s = 0.0;
+};
+
+// A force at a point fixed in the body (as on a massless particle there) and
+// a couple, acting while start_s <= t < end_s; the wrench timeout does not
+// apply.
+struct WrenchJob {
+  std::size_t body = 0;
+  WrenchAxes axes = WrenchAxes::kWorld;
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // [N], at point_m
+  Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // [N m]
+  Eigen::Vector3d point_m = Eigen::Vector3d::Zero(); // body frame: from the COM, body axes
+  double start_s = 0.0;
+  double end_s = 0.0;                                // +inf: until cleared
+};
+
+// Why AddJob refused a job.
+enum class JobRefusal { kNone, kBodyFull, kTableFull };
+
 class WrenchTable {
  public:
   // particle_counts[b] is the number of particles of body b.
@@ -35,11 +63,29 @@ class WrenchTable {
   // has checked it (the node's wrench intake): a known body and particle,
   // finite numbers. Debug builds assert this.
   void Hold(const ParticleWrench& wrench);
+  // Holds `wrench`, replacing the body wrench held for the same body.
+  void HoldBodyWrench(const BodyWrench& wrench);
+  // Adds a job unless its body has kMaxJobsPerBody live jobs or the table
+  // kMaxJobs; jobs that ended by t_s do not count. Checked like Hold.
+  JobRefusal AddJob(const WrenchJob& job, double t_s);
   void Clear();
+  // Drops every wrench and job of `body`.
+  void ClearBody(std::size_t body);
+  // A new body, after the others, with `particle_count` particles.
+  void AddBody(std::size_t particle_count);
+  // Drops `body`'s wrenches and renumbers the bodies after it down by one.
+  void RemoveBody(std::size_t body);
+  // The next Reduce sums again (the world's gravity or bodies changed).
+  void Invalidate() { reduced_ = false; }
   std::size_t size() const { return entries_.size(); }
+  std::size_t job_count() const { return job_count_; }
+  std::size_t job_count(std::size_t body) const { return jobs_per_body_[body]; }
+
+  static constexpr std::size_t kMaxJobsPerBody = 1000;
+  static constexpr std::size_t kMaxJobs = 100000;
 
   // Sums the wrenches active at t_s (start <= t_s and, for timeout_s > 0,
-  // t_s < start + timeout_s) into loads[b] for every body b that has one and
+  // t_s < start + timeout_s; for a job, start <= t_s < end) into loads[b] for every body b that has one and
   // sets loaded[b]; others are left cleared. Expired wrenches are dropped.
   // Times closer than tolerance_s count as equal, so that a stamp computed
   // as t_0 + n·dt elsewhere lands on step n despite round-off.
@@ -52,12 +98,40 @@ class WrenchTable {
               std::vector<char>* loaded);
 
  private:
-  static std::uint64_t Key(std::size_t body, std::size_t particle) {
-    return (static_cast<std::uint64_t>(body) << 32) | particle;
+  // One held wrench or job. A particle's force acts at its offset, looked up
+  // when summed; a body wrench's at the COM; a job's at its point.
+  struct Entry {
+    enum class Kind : std::uint8_t { kParticle, kBody, kJob };
+    Kind kind = Kind::kParticle;
+    WrenchAxes axes = WrenchAxes::kWorld;
+    std::size_t body = 0;
+    std::size_t particle = 0;  // kParticle only
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+    Eigen::Vector3d couple = Eigen::Vector3d::Zero();
+    Eigen::Vector3d point_m = Eigen::Vector3d::Zero();  // kJob only
+    double start_s = 0.0;
+    double end_s = 0.0;  // kJob only; the others end at start + timeout
+  };
+  // The slot a held wrench replaces in: (body, particle), or (body, kBodySlot).
+  static constexpr std::uint32_t kBodySlot = 0xFFFFFFFFu;
+  static std::uint64_t Key(std::size_t body, std::uint64_t slot) {
+    return (static_cast<std::uint64_t>(body) << 32) | slot;
   }
+  static std::uint64_t Key(const Entry& entry) {
+    return Key(entry.body, entry.kind == Entry::Kind::kParticle ? entry.particle : kBodySlot);
+  }
+  void HoldEntry(const Entry& entry);
+  // Swap-removes entries_[i], keeping index_ and the job counts.
+  void Erase(std::size_t i);
+  // Drops the jobs that ended by t_s.
+  void DropEndedJobs(double t_s);
+  void Reindex();
+
   std::vector<std::size_t> particle_counts_;
-  std::vector<ParticleWrench> entries_;                   // in order of arrival
-  std::unordered_map<std::uint64_t, std::size_t> index_;  // key → position in entries_
+  std::vector<Entry> entries_;                            // in order of arrival
+  std::unordered_map<std::uint64_t, std::size_t> index_;  // key → position, jobs excepted
+  std::vector<std::size_t> jobs_per_body_;
+  std::size_t job_count_ = 0;
   // What the last Reduce summed holds until a Hold or Clear, a change of
   // timeout or tolerance, the earliest start of a wrench not yet active and
   // the earliest expiry (start + timeout − tolerance) of one that is.
