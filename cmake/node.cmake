@@ -1,19 +1,24 @@
 # The ROS node over the core: a library (parameters, conversions, the node
 # class) and a thin executable. Included from CMakeLists.txt after the core.
 include_directories(include ${catkin_INCLUDE_DIRS})
+# ~spawn_body reads one scene entry from YAML text.
+find_package(yaml-cpp REQUIRED)
 
 add_library(rigid_body_sim_ros
   src/ros/scene_params.cpp
   src/ros/conversions.cpp
   src/ros/wrench_intake.cpp
   src/ros/body_state_request.cpp
+  src/ros/wrench_job_request.cpp
+  src/ros/yaml_value.cpp
+  src/ros/body_topics.cpp
   src/ros/state_publisher.cpp
   src/ros/node_diagnostics.cpp
   src/ros/simulation_node.cpp)
 # The ROS headers come from include_directories() above here and from
 # catkin_package() for dependent packages: no absolute path in the interface.
 target_include_directories(rigid_body_sim_ros PUBLIC include PRIVATE ${catkin_INCLUDE_DIRS})
-target_link_libraries(rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES})
+target_link_libraries(rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES})
 add_dependencies(rigid_body_sim_ros
   ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 

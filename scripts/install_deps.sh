@@ -9,10 +9,11 @@ packages=(
   ros-message-generation ros-message-runtime
   libtf2-ros-dev libtf2-eigen-dev libtf2-msgs-dev libgeometry-msgs-dev
   libstd-srvs-dev libvisualization-msgs-dev libdiagnostic-updater-dev
-  libdiagnostic-msgs-dev libros-rosgraph-msgs-dev
+  libdiagnostic-msgs-dev libros-rosgraph-msgs-dev libnav-msgs-dev libsensor-msgs-dev
   python3-geometry-msgs python3-std-srvs python3-diagnostic-msgs
   python3-tf2-msgs python3-visualization-msgs python3-rosgraph-msgs
-  libeigen3-dev libboost-dev libgtest-dev googletest libbenchmark-dev
+  python3-nav-msgs python3-sensor-msgs
+  libeigen3-dev libboost-dev libgtest-dev googletest libbenchmark-dev libyaml-cpp-dev
   "$@"
 )
 missing=()

@@ -41,6 +41,19 @@ std::optional<ConservationMonitor::Drift> ConservationMonitor::Measure(const Wor
   return drift;
 }
 
+void ConservationMonitor::AddBody(const World& world) {
+  references_.push_back(Of(world, world.size() - 1));
+  loaded_.push_back(false);
+}
+
+void ConservationMonitor::RemoveBody(std::size_t body) {
+  references_.erase(references_.begin() + static_cast<std::ptrdiff_t>(body));
+  loaded_.erase(loaded_.begin() + static_cast<std::ptrdiff_t>(body));
+  sweep_cursor_ = 0;
+  sweep_ = Largest{};
+  last_sweep_ = Largest{};
+}
+
 void ConservationMonitor::Sweep(const World& world, std::size_t count) {
   for (std::size_t i = 0; i < count && world.size() > 0; ++i) {
     const std::size_t body = sweep_cursor_;

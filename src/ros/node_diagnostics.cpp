@@ -69,6 +69,17 @@ void NodeDiagnostics::OnReset() {
   frozen_seen_ = world_.frozen_count();
 }
 
+void NodeDiagnostics::OnBodyAdded() {
+  conservation_.AddBody(world_);
+  reported_faults_.push_back(core::BodyFault::kNone);
+}
+
+void NodeDiagnostics::OnBodyRemoved(std::size_t body) {
+  conservation_.RemoveBody(body);
+  reported_faults_.erase(reported_faults_.begin() + static_cast<std::ptrdiff_t>(body));
+  frozen_seen_ = world_.frozen_count();
+}
+
 void NodeDiagnostics::Report(Clock::time_point now, const ros::Time& stamp, bool paused) {
   const double wall_s = std::chrono::duration<double>(now - window_.start).count();
   achieved_real_time_factor_ = wall_s > 0.0 ? (world_.time() - window_.start_sim_time_s) / wall_s : 0.0;

@@ -17,7 +17,6 @@ using XmlRpc::XmlRpcValue;
 constexpr int kDefaultShapeResolution = 5;
 // Bounds that keep a mistyped or hostile scene from exhausting memory at start
 // (the scene is held in RAM, once per body and per particle).
-constexpr int kMaxBodies = 100000;
 constexpr int kMaxParticlesPerBody = 100000;
 constexpr int kMaxShapeResolution = 40;  // 64,000 cells
 constexpr std::size_t kMaxNameLength = 128;
@@ -316,6 +315,7 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   }
   settings.publish_clock = params.Bool("publish_clock", settings.publish_clock);
   settings.publish_tf = params.Bool("publish_tf", settings.publish_tf);
+  settings.per_body_topics = params.Bool("per_body_topics", settings.per_body_topics);
   settings.particle_marker_diameter_m =
       params.Number("particle_marker_diameter", settings.particle_marker_diameter_m);
   settings.status_period_s = params.Number("status_period", settings.status_period_s);
@@ -365,9 +365,9 @@ void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies) {
   if (bodies.getType() != XmlRpcValue::TypeArray || bodies.size() == 0) {
     throw SceneError("~bodies must be a non-empty list of bodies, got " + Describe(bodies));
   }
-  if (bodies.size() > kMaxBodies) {
+  if (static_cast<std::size_t>(bodies.size()) > kMaxSceneBodies) {
     throw SceneError("~bodies has " + std::to_string(bodies.size()) + " entries, at most " +
-                     std::to_string(kMaxBodies) + " are allowed");
+                     std::to_string(kMaxSceneBodies) + " are allowed");
   }
   for (int i = 0; i < bodies.size(); ++i) ParseBodyEntry(bodies[i], i, scene_bodies);
 }

@@ -6,6 +6,8 @@
 #include <ros/callback_queue.h>
 
 #include "rigid_body_sim/ros/body_state_request.h"
+#include "rigid_body_sim/ros/wrench_job_request.h"
+#include "rigid_body_sim/ros/yaml_value.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -41,7 +43,10 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       publish_every_steps_(PublishEverySteps(settings_)),
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
       intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix)),
-      publisher_(private_nh, settings_, world_),
+      publisher_(private_nh, settings_, world_,
+                 [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
+                   OnBodyWrench(body, msg);
+                 }),
       diagnostics_(private_nh, settings_, world_, pacer_, intake_),
       private_nh_(private_nh) {
   const ros::TransportHints low_latency = ros::TransportHints().tcpNoDelay();
@@ -57,6 +62,12 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       private_nh_.advertiseService("set_body_state", &SimulationNode::OnSetBodyState, this));
   services_.push_back(
       private_nh_.advertiseService("clear_wrenches", &SimulationNode::OnClearWrenches, this));
+  services_.push_back(
+      private_nh_.advertiseService("apply_body_wrench", &SimulationNode::OnApplyBodyWrench, this));
+  services_.push_back(
+      private_nh_.advertiseService("clear_body_wrenches", &SimulationNode::OnClearBodyWrenches, this));
+  services_.push_back(private_nh_.advertiseService("spawn_body", &SimulationNode::OnSpawnBody, this));
+  services_.push_back(private_nh_.advertiseService("delete_body", &SimulationNode::OnDeleteBody, this));
 
   if (std::llround(settings_.rate_hz / settings_.publish_rate_hz) * settings_.publish_rate_hz !=
       settings_.rate_hz) {
@@ -134,6 +145,13 @@ void SimulationNode::OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg
                     [this](const core::ParticleWrench& wrench) { Hold(wrench); });
 }
 
+void SimulationNode::OnBodyWrench(const std::string& body, const geometry_msgs::WrenchStamped& msg) {
+  if (const auto wrench = intake_.TakeBodyWrench(msg, body, start_stamp_, world_.time())) {
+    world_.HoldBodyWrench(*wrench);
+    diagnostics_.OnWrenchHeld(wrench->body);
+  }
+}
+
 bool SimulationNode::OnReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_.Reset();
   diagnostics_.OnReset();
@@ -197,6 +215,81 @@ bool SimulationNode::OnSetBodyState(SetBodyState::Request& request,
 bool SimulationNode::OnClearWrenches(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_.ClearWrenches();
   diagnostics_.OnWrenchesCleared();
+  return true;
+}
+
+bool SimulationNode::OnApplyBodyWrench(ApplyBodyWrench::Request& request,
+                                       ApplyBodyWrench::Response& response) {
+  response.success = false;
+  const std::optional<core::WrenchJob> job =
+      JobFromRequest(request, intake_.frames(), start_stamp_, world_.time(), &response.message);
+  if (!job) return true;
+  const core::JobRefusal refusal = world_.AddWrenchJob(*job);
+  if (refusal != core::JobRefusal::kNone) {
+    response.message = JobRefusalMessage(refusal, request.body);
+    return true;
+  }
+  diagnostics_.OnWrenchHeld(job->body);
+  response.success = true;
+  response.message = "job added on '" + request.body + "'";
+  return true;
+}
+
+bool SimulationNode::OnClearBodyWrenches(ClearBodyWrenches::Request& request,
+                                         ClearBodyWrenches::Response& response) {
+  if (request.body.empty()) {
+    world_.ClearWrenches();
+    diagnostics_.OnWrenchesCleared();
+    response.success = true;
+    response.message = "cleared the wrenches of every body";
+    return true;
+  }
+  const std::optional<std::size_t> body = world_.FindBody(request.body);
+  response.success = body.has_value();
+  if (!body) {
+    response.message = "body: unknown body '" + request.body + "'";
+    return true;
+  }
+  world_.ClearBodyWrenches(*body);
+  response.message = "cleared the wrenches of '" + request.body + "'";
+  return true;
+}
+
+bool SimulationNode::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response& response) {
+  response.success = false;
+  SceneBodies entry;
+  try {
+    if (world_.size() >= kMaxSceneBodies) {
+      throw SceneError("the node already has " + std::to_string(world_.size()) +
+                       " bodies, the most it may have");
+    }
+    ParseBodyEntry(XmlRpcFromYaml(request.body_yaml), world_.size(), &entry);
+    world_.AddBody(std::move(entry.models[0]), entry.initial_states[0], entry.properties[0]);
+  } catch (const std::exception& error) {  // SceneError, or the world refusing the body
+    response.message = error.what();
+    return true;
+  }
+  const core::BodyModel& model = world_.model(world_.size() - 1);
+  intake_.AddBody(model);
+  publisher_.AddBody(model);
+  diagnostics_.OnBodyAdded();
+  response.success = true;
+  response.message = "spawned '" + model.name() + "' as bodies[" + std::to_string(world_.size() - 1) + "]";
+  return true;
+}
+
+bool SimulationNode::OnDeleteBody(DeleteBody::Request& request, DeleteBody::Response& response) {
+  const std::optional<std::size_t> body = world_.FindBody(request.body);
+  response.success = body.has_value();
+  if (!body) {
+    response.message = "body: unknown body '" + request.body + "'";
+    return true;
+  }
+  world_.RemoveBody(*body);
+  intake_.RemoveBody(request.body);
+  publisher_.RemoveBody(*body);
+  diagnostics_.OnBodyRemoved(*body);
+  response.message = "deleted '" + request.body + "'";
   return true;
 }
 

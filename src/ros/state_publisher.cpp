@@ -16,20 +16,12 @@ namespace {
 constexpr std::uint32_t kStateQueueSize = 10;
 constexpr std::uint32_t kTfQueueSize = 100;  // as tf2_ros::TransformBroadcaster
 
-std::vector<std::string> ChildFrames(const NodeSettings& settings, const core::World& world) {
-  std::vector<std::string> frames;
-  for (const core::BodyModel& model : world.models()) {
-    frames.push_back(BodyFrameId(settings.tf_prefix, model.name()));
-  }
-  return frames;
-}
-
 // A few distinct colours for the bodies' particles in rviz.
-std_msgs::ColorRGBA BodyColor(std::size_t body) {
+std_msgs::ColorRGBA BodyColor(int marker_id) {
   static const float kPalette[][3] = {{0.90f, 0.30f, 0.25f}, {0.25f, 0.60f, 0.90f},
                                       {0.35f, 0.80f, 0.35f}, {0.95f, 0.75f, 0.20f},
                                       {0.70f, 0.40f, 0.85f}, {0.30f, 0.85f, 0.80f}};
-  const float* rgb = kPalette[body % (sizeof(kPalette) / sizeof(kPalette[0]))];
+  const float* rgb = kPalette[static_cast<std::size_t>(marker_id) % (sizeof(kPalette) / sizeof(kPalette[0]))];
   std_msgs::ColorRGBA color;
   color.r = rgb[0];
   color.g = rgb[1];
@@ -50,24 +42,35 @@ void StatePublisher::Advertise(ros::NodeHandle& nh, const std::string& topic,
 }
 
 StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings,
-                               const core::World& world)
+                               const core::World& world, BodyTopics::WrenchCallback on_body_wrench)
     : world_frame_(settings.world_frame),
       publish_clock_(settings.publish_clock),
       publish_tf_(settings.publish_tf),
       particle_marker_diameter_m_(settings.particle_marker_diameter_m),
-      child_frames_(ChildFrames(settings, world)),
-      poses_(world.size()),
-      twists_(world.size()) {
-  for (std::size_t body = 0; body < world.size(); ++body) {
-    const std::string& name = world.model(body).name();
-    Advertise<geometry_msgs::PoseStamped>(private_nh, name + "/pose", kStateQueueSize, &poses_[body]);
-    Advertise<geometry_msgs::TwistStamped>(private_nh, name + "/twist", kStateQueueSize, &twists_[body]);
-  }
+      tf_prefix_(settings.tf_prefix),
+      body_topics_(private_nh, settings.per_body_topics, std::move(on_body_wrench)) {
   ros::NodeHandle root;
   Advertise<tf2_msgs::TFMessage>(root, "/tf", kTfQueueSize, &tf_);
   Advertise<BodyStateArray>(private_nh, "bodies", kStateQueueSize, &bodies_);
   Advertise<visualization_msgs::MarkerArray>(private_nh, "particles", kStateQueueSize, &particles_);
   if (publish_clock_) clock_ = root.advertise<rosgraph_msgs::Clock>("/clock", kStateQueueSize);
+  for (const core::BodyModel& model : world.models()) AddBody(model);
+}
+
+void StatePublisher::AddBody(const core::BodyModel& model) {
+  child_frames_.push_back(BodyFrameId(tf_prefix_, model.name()));
+  marker_ids_.push_back(next_marker_id_++);
+  body_topics_.Add(model.name());
+}
+
+void StatePublisher::RemoveBody(std::size_t index) {
+  const auto at = [index](auto& per_body) {
+    per_body.erase(per_body.begin() + static_cast<std::ptrdiff_t>(index));
+  };
+  deleted_marker_ids_.push_back(marker_ids_[index]);
+  at(child_frames_);
+  at(marker_ids_);
+  body_topics_.Remove(index);
 }
 
 void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
@@ -80,6 +83,7 @@ void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
   PublishBodyTopics(world, stamp);
   if (bodies_.subscribers > 0) PublishBodies(world, stamp);
   if (particles_.subscribers > 0) PublishParticles(world, stamp);
+  deleted_marker_ids_.clear();
 }
 
 void StatePublisher::PublishTf(const core::World& world, const ros::Time& stamp) {
@@ -96,19 +100,21 @@ void StatePublisher::PublishTf(const core::World& world, const ros::Time& stamp)
 
 void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time& stamp) {
   for (std::size_t body = 0; body < world.size(); ++body) {
-    if (poses_[body].subscribers > 0) {
+    const BodyTopics::Topics* topics = body_topics_.at(body);
+    if (topics == nullptr) continue;  // not yet advertised
+    if (topics->pose.wanted()) {
       geometry_msgs::PoseStamped pose;
       pose.header.stamp = stamp;
       pose.header.frame_id = world_frame_;
       pose.pose = ToPoseMsg(world.state(body));
-      poses_[body].publisher.publish(pose);
+      topics->pose.publisher.publish(pose);
     }
-    if (twists_[body].subscribers > 0) {
+    if (topics->twist.wanted()) {
       geometry_msgs::TwistStamped twist;
       twist.header.stamp = stamp;
       twist.header.frame_id = world_frame_;
       twist.twist = ToTwistMsg(world.model(body), world.state(body));
-      twists_[body].publisher.publish(twist);
+      topics->twist.publisher.publish(twist);
     }
   }
 }
@@ -126,18 +132,26 @@ void StatePublisher::PublishBodies(const core::World& world, const ros::Time& st
 
 void StatePublisher::PublishParticles(const core::World& world, const ros::Time& stamp) {
   visualization_msgs::MarkerArray markers;
-  markers.markers.resize(world.size());
-  for (std::size_t body = 0; body < world.size(); ++body) {
-    visualization_msgs::Marker& marker = markers.markers[body];
+  markers.markers.resize(deleted_marker_ids_.size() + world.size());
+  for (std::size_t k = 0; k < deleted_marker_ids_.size(); ++k) {
+    visualization_msgs::Marker& marker = markers.markers[k];
     marker.header.stamp = stamp;
     marker.header.frame_id = world_frame_;
     marker.ns = "particles";
-    marker.id = static_cast<int>(body);
+    marker.id = deleted_marker_ids_[k];
+    marker.action = visualization_msgs::Marker::DELETE;
+  }
+  for (std::size_t body = 0; body < world.size(); ++body) {
+    visualization_msgs::Marker& marker = markers.markers[deleted_marker_ids_.size() + body];
+    marker.header.stamp = stamp;
+    marker.header.frame_id = world_frame_;
+    marker.ns = "particles";
+    marker.id = marker_ids_[body];
     marker.type = visualization_msgs::Marker::SPHERE_LIST;
     marker.action = visualization_msgs::Marker::ADD;
     marker.pose.orientation.w = 1.0;
     marker.scale.x = marker.scale.y = marker.scale.z = particle_marker_diameter_m_;
-    marker.color = BodyColor(body);
+    marker.color = BodyColor(marker.id);
     core::ParticlePositions(world.model(body), world.state(body), &particle_positions_);
     marker.points.resize(particle_positions_.size());
     for (std::size_t i = 0; i < particle_positions_.size(); ++i) {

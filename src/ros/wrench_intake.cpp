@@ -37,6 +37,44 @@ WrenchFrames MakeWrenchFrames(const core::World& world, const std::string& world
   return frames;
 }
 
+void AddBodyFrame(const core::BodyModel& model, WrenchFrames* frames) {
+  frames->body_index.emplace(model.name(), frames->particle_counts.size());
+  frames->particle_counts.push_back(model.particle_count());
+}
+
+void RemoveBodyFrame(const std::string& name, WrenchFrames* frames) {
+  const auto removed = frames->body_index.find(name);
+  if (removed == frames->body_index.end()) return;
+  const std::size_t body = removed->second;
+  frames->body_index.erase(removed);
+  for (auto& [other, index] : frames->body_index) {
+    if (index > body) --index;
+  }
+  frames->particle_counts.erase(frames->particle_counts.begin() + static_cast<std::ptrdiff_t>(body));
+}
+
+std::optional<core::WrenchAxes> AxesOfFrame(const std::string& frame_id, const std::string& body,
+                                            const WrenchFrames& frames) {
+  const std::string frame = WithoutLeadingSlash(frame_id);
+  if (frame.empty() || frame == WithoutLeadingSlash(frames.world_frame)) {
+    return core::WrenchAxes::kWorld;
+  }
+  if (frame == body || frame == BodyFrameId(frames.tf_prefix, body)) return core::WrenchAxes::kBody;
+  return std::nullopt;
+}
+
+std::string UnknownFrameMessage(const std::string& frame_id, const std::string& body,
+                                const WrenchFrames& frames) {
+  return "unknown frame_id '" + frame_id + "' for body '" + body + "' (use '', '" +
+         frames.world_frame + "' or '" + BodyFrameId(frames.tf_prefix, body) + "')";
+}
+
+double StartTimeOf(const ros::Time& stamp, const ros::Time& start_stamp, double next_step_time_s) {
+  // A stamp copied from a published state may differ from its t_n by the
+  // nanosecond rounding; the world counts times within 1e-3 dt as equal.
+  return stamp.isZero() ? next_step_time_s : SecondsSince(start_stamp, stamp);
+}
+
 CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
                                   const ros::Time& start_stamp, double next_step_time_s) {
   CheckedWrench result;
@@ -66,29 +104,49 @@ CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames&
                       std::to_string(msg.particle));
   }
 
-  const std::string frame = WithoutLeadingSlash(msg.header.frame_id);
-  core::WrenchAxes axes;
-  if (frame.empty() || frame == WithoutLeadingSlash(frames.world_frame)) {
-    axes = core::WrenchAxes::kWorld;
-  } else if (frame == msg.body || frame == BodyFrameId(frames.tf_prefix, msg.body)) {
-    axes = core::WrenchAxes::kBody;
-  } else {
+  const std::optional<core::WrenchAxes> axes = AxesOfFrame(msg.header.frame_id, msg.body, frames);
+  if (!axes) {
     return reject(WrenchMsgRejection::kUnknownFrame,
-                  "unknown frame_id '" + msg.header.frame_id + "' for body '" + msg.body +
-                      "' (use '', '" + frames.world_frame + "' or '" +
-                      BodyFrameId(frames.tf_prefix, msg.body) + "')");
+                  UnknownFrameMessage(msg.header.frame_id, msg.body, frames));
   }
 
   result.wrench.body = body_index;
   result.wrench.particle = msg.particle;
-  result.wrench.axes = axes;
+  result.wrench.axes = *axes;
   result.wrench.force = force;
   result.wrench.couple = couple;
-  // A stamp copied from a published state may differ from its t_n by the
-  // nanosecond rounding; the world counts times within 1e-3 dt as equal.
-  result.wrench.start_s = msg.header.stamp.isZero()
-                              ? next_step_time_s
-                              : SecondsSince(start_stamp, msg.header.stamp);
+  result.wrench.start_s = StartTimeOf(msg.header.stamp, start_stamp, next_step_time_s);
+  return result;
+}
+
+CheckedBodyWrench CheckBodyWrench(const geometry_msgs::WrenchStamped& msg, const std::string& body,
+                                  const WrenchFrames& frames, const ros::Time& start_stamp,
+                                  double next_step_time_s) {
+  CheckedBodyWrench result;
+  const auto found = frames.body_index.find(body);
+  if (found == frames.body_index.end()) {
+    result.rejection = WrenchMsgRejection::kUnknownBody;
+    result.detail = "unknown body '" + body + "'";
+    return result;
+  }
+  const Eigen::Vector3d force = FromVector3Msg(msg.wrench.force);
+  const Eigen::Vector3d couple = FromVector3Msg(msg.wrench.torque);
+  if (!force.allFinite() || !couple.allFinite()) {
+    result.rejection = WrenchMsgRejection::kNonFinite;
+    result.detail = "NaN or infinite force or torque for body '" + body + "'";
+    return result;
+  }
+  const std::optional<core::WrenchAxes> axes = AxesOfFrame(msg.header.frame_id, body, frames);
+  if (!axes) {
+    result.rejection = WrenchMsgRejection::kUnknownFrame;
+    result.detail = UnknownFrameMessage(msg.header.frame_id, body, frames);
+    return result;
+  }
+  result.wrench.body = found->second;
+  result.wrench.axes = *axes;
+  result.wrench.force = force;
+  result.wrench.couple = couple;
+  result.wrench.start_s = StartTimeOf(msg.header.stamp, start_stamp, next_step_time_s);
   return result;
 }
 
@@ -97,12 +155,25 @@ std::optional<core::ParticleWrench> WrenchIntake::Take(const ParticleWrench& msg
                                                        double next_step_time_s) {
   CheckedWrench checked = CheckParticleWrench(msg, frames_, start_stamp, next_step_time_s);
   if (checked.accepted()) return checked.wrench;
-  ++rejected_messages_;
-  ++rejected_by_reason_[static_cast<std::size_t>(checked.rejection)];
-  ROS_WARN_THROTTLE(1.0, "rejected a particle wrench (%s): %s (%llu rejected so far)",
-                    ToString(checked.rejection), checked.detail.c_str(),
-                    static_cast<unsigned long long>(rejected_messages_));
+  Reject("particle wrench", checked.rejection, checked.detail);
   return std::nullopt;
+}
+
+std::optional<core::BodyWrench> WrenchIntake::TakeBodyWrench(const geometry_msgs::WrenchStamped& msg,
+                                                             const std::string& body,
+                                                             const ros::Time& start_stamp,
+                                                             double next_step_time_s) {
+  CheckedBodyWrench checked = CheckBodyWrench(msg, body, frames_, start_stamp, next_step_time_s);
+  if (checked.accepted()) return checked.wrench;
+  Reject("body wrench", checked.rejection, checked.detail);
+  return std::nullopt;
+}
+
+void WrenchIntake::Reject(const char* what, WrenchMsgRejection reason, const std::string& detail) {
+  ++rejected_messages_;
+  ++rejected_by_reason_[static_cast<std::size_t>(reason)];
+  ROS_WARN_THROTTLE(1.0, "rejected a %s (%s): %s (%llu rejected so far)", what, ToString(reason),
+                    detail.c_str(), static_cast<unsigned long long>(rejected_messages_));
 }
 
 void WrenchIntake::RejectExcessEntries(std::size_t count) {

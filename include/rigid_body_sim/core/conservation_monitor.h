@@ -24,6 +24,10 @@ class ConservationMonitor {
   void Rebase(const World& world, std::size_t body);
   // A wrench was held for the body: it no longer conserves anything.
   void MarkLoaded(std::size_t body) { loaded_[body] = true; }
+  // The world appended a body: referenced at its current state, torque-free.
+  void AddBody(const World& world);
+  // The world removed `body`: the sweep starts over, as its indices moved.
+  void RemoveBody(std::size_t body);
 
   // Relative drifts (x − x₀) / x₀, absolute when x₀ is zero.
   struct Drift {

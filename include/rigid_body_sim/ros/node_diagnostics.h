@@ -44,6 +44,9 @@ class NodeDiagnostics {
   void OnBodyStateSet(std::size_t body);
   void OnWrenchesCleared() { conservation_.RebaseAll(world_); }
   void OnReset();
+  // The world appended a body / removed `body`.
+  void OnBodyAdded();
+  void OnBodyRemoved(std::size_t body);
 
  private:
   // Statistics over one report period (about a second of wall time).

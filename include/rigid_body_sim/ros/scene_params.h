@@ -30,6 +30,9 @@ struct NodeSettings {
   double real_time_factor = 1.0;        // 0: as fast as possible
   bool publish_clock = false;
   bool publish_tf = true;
+  // Each body's own topics (~<body>/pose, ...) advertised (extension): off
+  // spares the master 6 registrations per body in very large scenes.
+  bool per_body_topics = true;
   double particle_marker_diameter_m = 0.04;  // ~particles sphere size (extension)
   double status_period_s = 1.0;  // the INFO status line's period, 0: never (extension)
   // Most substeps of dt/n one body may take in a step (extension); the
@@ -49,6 +52,10 @@ struct Scene {
   NodeSettings settings;
   SceneBodies bodies;
 };
+
+// The most bodies a scene, with the ones spawned later, may have: a bound
+// that keeps a mistyped or hostile scene from exhausting memory.
+constexpr std::size_t kMaxSceneBodies = 100000;
 
 // An invalid scene or parameter; what() is one line naming the entry and key,
 // e.g. "bodies[2] (name 'rod'): particles[1].mass must be > 0, got -1".

@@ -12,9 +12,14 @@
 #include <cstdint>
 #include <vector>
 
+#include <geometry_msgs/WrenchStamped.h>
+#include <rigid_body_sim/ApplyBodyWrench.h>
+#include <rigid_body_sim/ClearBodyWrenches.h>
+#include <rigid_body_sim/DeleteBody.h>
 #include <rigid_body_sim/ParticleWrench.h>
 #include <rigid_body_sim/ParticleWrenchArray.h>
 #include <rigid_body_sim/SetBodyState.h>
+#include <rigid_body_sim/SpawnBody.h>
 #include <rigid_body_sim/Step.h>
 
 #include <ros/ros.h>
@@ -49,11 +54,17 @@ class SimulationNode {
 
   void OnParticleWrench(const ParticleWrench::ConstPtr& msg);
   void OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg);
+  void OnBodyWrench(const std::string& body, const geometry_msgs::WrenchStamped& msg);
   bool OnReset(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool OnSetPaused(std_srvs::SetBool::Request& request, std_srvs::SetBool::Response& response);
   bool OnStep(Step::Request& request, Step::Response& response);
   bool OnSetBodyState(SetBodyState::Request& request, SetBodyState::Response& response);
   bool OnClearWrenches(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
+  bool OnApplyBodyWrench(ApplyBodyWrench::Request& request, ApplyBodyWrench::Response& response);
+  bool OnClearBodyWrenches(ClearBodyWrenches::Request& request,
+                           ClearBodyWrenches::Response& response);
+  bool OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response& response);
+  bool OnDeleteBody(DeleteBody::Request& request, DeleteBody::Response& response);
 
   const NodeSettings settings_;
   core::World world_;

@@ -1,6 +1,6 @@
 // Every outbound per-cycle message (doc/node.md, "Topics and services"): /clock, /tf, each
-// body's pose and twist, ~bodies and ~particles, all from the world's state
-// at one stamp, and each built only while someone subscribes.
+// body's own topics (BodyTopics), ~bodies and ~particles, all from the world's
+// state at one stamp, and each built only while someone subscribes.
 #pragma once
 
 #include <string>
@@ -10,26 +10,28 @@
 #include <ros/ros.h>
 
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_topics.h"
 #include "rigid_body_sim/ros/scene_params.h"
 
 namespace rigid_body_sim {
 
 class StatePublisher {
  public:
-  // Advertises every topic for the world's bodies.
-  StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings, const core::World& world);
+  // Advertises the shared topics now and queues each body's own
+  // (BodyTopics); messages on ~<body>/wrench go to `on_body_wrench`.
+  StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings, const core::World& world,
+                 BodyTopics::WrenchCallback on_body_wrench);
 
   void Publish(const core::World& world, const ros::Time& stamp);
 
+  // The world appended a body / removed body `index`: its TF frame, marker
+  // and topics follow from the next cycle (a DELETE for its marker).
+  void AddBody(const core::BodyModel& model);
+  void RemoveBody(std::size_t index);
+
+  const BodyTopics& body_topics() const { return body_topics_; }
+
  private:
-  // A publisher with its subscriber count, kept by connect/disconnect
-  // callbacks (run on the node's callback queue): roscpp's
-  // getNumSubscribers() searches every advertised topic, so asking it twice
-  // per body per cycle would cost O(bodies²).
-  struct CountedPublisher {
-    ros::Publisher publisher;
-    int subscribers = 0;
-  };
   template <typename Msg>
   void Advertise(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue_size,
                  CountedPublisher* counted);
@@ -43,10 +45,14 @@ class StatePublisher {
   const bool publish_clock_;
   const bool publish_tf_;
   const double particle_marker_diameter_m_;
-  const std::vector<std::string> child_frames_;  // TF frame of each body
-  // Stable addresses: the connect callbacks point at the counts.
-  std::vector<CountedPublisher> poses_;
-  std::vector<CountedPublisher> twists_;
+  const std::string tf_prefix_;
+  std::vector<std::string> child_frames_;  // TF frame of each body
+  // Each body's ~particles marker id: its scene index, then one more per spawn,
+  // so that a delete does not renumber the others in rviz.
+  std::vector<int> marker_ids_;
+  int next_marker_id_ = 0;
+  std::vector<int> deleted_marker_ids_;  // DELETEs for the next ~particles
+  BodyTopics body_topics_;
   CountedPublisher tf_;  // /tf as tf2_ros::TransformBroadcaster advertises it
   CountedPublisher bodies_;
   CountedPublisher particles_;

@@ -1,6 +1,6 @@
-// Every inbound particle wrench, from a message or an array entry, checked
-// once (doc/node.md, "Time, frames and pacing"): a known body and particle, finite
-// numbers, a known frame. What passes becomes a core wrench with its start
+// Every inbound wrench message, a particle wrench (a message or an array
+// entry) or a body wrench (~<body>/wrench), checked once (doc/node.md, "Time,
+// frames and pacing"): a known body and particle, finite numbers, a known frame. What passes becomes a core wrench with its start
 // time; what fails is counted by reason and warned about (throttled), and
 // changes nothing else. The core's wrench table trusts what comes out.
 #pragma once
@@ -14,6 +14,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include <geometry_msgs/WrenchStamped.h>
 #include <rigid_body_sim/ParticleWrench.h>
 #include <rigid_body_sim/ParticleWrenchArray.h>
 #include <ros/time.h>
@@ -47,6 +48,18 @@ struct WrenchFrames {
 };
 WrenchFrames MakeWrenchFrames(const core::World& world, const std::string& world_frame,
                               const std::string& tf_prefix);
+// The frames after the world appended `model` / removed body `body`.
+void AddBodyFrame(const core::BodyModel& model, WrenchFrames* frames);
+void RemoveBodyFrame(const std::string& name, WrenchFrames* frames);
+
+// The axes `frame_id` names for a wrench on `body`: "" or the world frame →
+// world axes; the body's name, with or without tf_prefix, → body axes; a
+// leading '/' is ignored (tf1 habit); anything else → nullopt.
+std::optional<core::WrenchAxes> AxesOfFrame(const std::string& frame_id, const std::string& body,
+                                            const WrenchFrames& frames);
+// "unknown frame_id 'x' for body 'b' (use '', 'world' or 'sim/b')".
+std::string UnknownFrameMessage(const std::string& frame_id, const std::string& body,
+                                const WrenchFrames& frames);
 
 struct CheckedWrench {
   core::ParticleWrench wrench;                        // valid when accepted
@@ -55,13 +68,26 @@ struct CheckedWrench {
   bool accepted() const { return rejection == WrenchMsgRejection::kNone; }
 };
 
-// The check itself, without counting. A frame_id "" or the world frame →
-// world axes; the body's name, with or without tf_prefix, → body axes; a
-// leading '/' is ignored (tf1 habit). Times are simulation times counted
-// from `start_stamp`: a zero stamp starts at `next_step_time_s`, the time of
-// the next step; any other at stamp − start_stamp (exact, in nanoseconds).
+// The check itself, without counting; frame_id as AxesOfFrame. Times are
+// simulation times counted from `start_stamp`: a zero stamp starts at
+// `next_step_time_s`, the time of the next step; any other at stamp −
+// start_stamp (exact, in nanoseconds).
 CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
                                   const ros::Time& start_stamp, double next_step_time_s);
+
+struct CheckedBodyWrench {
+  core::BodyWrench wrench;  // valid when accepted
+  WrenchMsgRejection rejection = WrenchMsgRejection::kNone;
+  std::string detail;
+  bool accepted() const { return rejection == WrenchMsgRejection::kNone; }
+};
+// A message on ~<body>/wrench, checked as CheckParticleWrench checks.
+CheckedBodyWrench CheckBodyWrench(const geometry_msgs::WrenchStamped& msg, const std::string& body,
+                                  const WrenchFrames& frames, const ros::Time& start_stamp,
+                                  double next_step_time_s);
+
+// A stamp's simulation time: a zero stamp is `next_step_time_s`.
+double StartTimeOf(const ros::Time& stamp, const ros::Time& start_stamp, double next_step_time_s);
 
 class WrenchIntake {
  public:
@@ -71,9 +97,18 @@ class WrenchIntake {
 
   explicit WrenchIntake(WrenchFrames frames) : frames_(std::move(frames)) {}
 
+  const WrenchFrames& frames() const { return frames_; }
+  void AddBody(const core::BodyModel& model) { AddBodyFrame(model, &frames_); }
+  void RemoveBody(const std::string& name) { RemoveBodyFrame(name, &frames_); }
+
   // The checked wrench, or nullopt with the rejection counted and warned.
   std::optional<core::ParticleWrench> Take(const ParticleWrench& msg, const ros::Time& start_stamp,
                                            double next_step_time_s);
+  // The same for a message on ~<body>/wrench.
+  std::optional<core::BodyWrench> TakeBodyWrench(const geometry_msgs::WrenchStamped& msg,
+                                                 const std::string& body,
+                                                 const ros::Time& start_stamp,
+                                                 double next_step_time_s);
   // Every entry in order through Take, each accepted one handed to `hold`.
   template <typename Hold>
   void TakeArray(const ParticleWrenchArray& msg, const ros::Time& start_stamp,
@@ -92,8 +127,9 @@ class WrenchIntake {
 
  private:
   void RejectExcessEntries(std::size_t count);
+  void Reject(const char* what, WrenchMsgRejection reason, const std::string& detail);
 
-  const WrenchFrames frames_;
+  WrenchFrames frames_;
   std::uint64_t rejected_messages_ = 0;
   std::array<std::uint64_t, kWrenchMsgRejectionCount> rejected_by_reason_{};
 };

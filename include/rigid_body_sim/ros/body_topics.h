@@ -1,0 +1,95 @@
+// Each body's own topics (doc/node.md, "Topics and services"): the
+// ~<body>/... publishers and the ~<body>/wrench subscription, advertised and
+// shut down on a thread of their own. Each is a call to the master of a few
+// milliseconds, so 10,000 bodies' topics would hold the first step back by
+// minutes, and a spawn or delete would make steps late: the stepping thread
+// only queues the work and uses a body's topics once they exist.
+#pragma once
+
+#include <atomic>
+#include <condition_variable>
+#include <cstddef>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <geometry_msgs/WrenchStamped.h>
+#include <ros/ros.h>
+
+namespace rigid_body_sim {
+
+// A publisher with its subscriber count, kept by connect/disconnect callbacks
+// (run on the node's callback queue, the stepping thread): roscpp's
+// getNumSubscribers() searches every advertised topic, so asking it per body
+// per cycle would cost O(bodies²).
+struct CountedPublisher {
+  ros::Publisher publisher;
+  int subscribers = 0;
+  bool wanted() const { return subscribers > 0; }
+};
+
+class BodyTopics {
+ public:
+  // One body's topics; read only once `advertised` is set.
+  struct Topics {
+    std::string body;
+    CountedPublisher pose;
+    CountedPublisher twist;
+    CountedPublisher odom;
+    CountedPublisher imu;
+    CountedPublisher applied_wrench;
+    ros::Subscriber wrench;
+    std::atomic<bool> advertised{false};
+    std::atomic<bool> removed{false};  // set when the body goes: not advertised after
+  };
+  // Called on the stepping thread for each message on ~<body>/wrench.
+  using WrenchCallback =
+      std::function<void(const std::string& body, const geometry_msgs::WrenchStamped& msg)>;
+
+  // With `enabled` false no per-body topic is ever advertised.
+  BodyTopics(const ros::NodeHandle& private_nh, bool enabled, WrenchCallback on_wrench);
+  // Stops the advertising thread; topics not yet advertised never are.
+  ~BodyTopics();
+  BodyTopics(const BodyTopics&) = delete;
+  BodyTopics& operator=(const BodyTopics&) = delete;
+
+  // A body appended after the others; its topics appear shortly.
+  void Add(const std::string& body);
+  // Body `index` goes now; its topics are shut down shortly.
+  void Remove(std::size_t index);
+
+  // Body `index`'s topics, or nullptr while they are not yet advertised.
+  const Topics* at(std::size_t index) const {
+    const Topics* topics = bodies_[index].get();
+    return topics != nullptr && topics->advertised.load(std::memory_order_acquire) ? topics : nullptr;
+  }
+  // How many bodies' topics are advertised (diagnostics; start-up progress).
+  std::size_t advertised_count() const { return advertised_.load(std::memory_order_relaxed); }
+  std::size_t size() const { return bodies_.size(); }
+
+ private:
+  struct Task {
+    std::shared_ptr<Topics> topics;
+    bool advertise = true;  // false: shut down
+  };
+  void Work();
+  void Advertise(const std::shared_ptr<Topics>& topics);
+  void Push(Task task);
+
+  ros::NodeHandle private_nh_;
+  const bool enabled_;
+  const WrenchCallback on_wrench_;
+  std::vector<std::shared_ptr<Topics>> bodies_;  // stepping thread only
+  std::atomic<std::size_t> advertised_{0};
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<Task> tasks_;  // under mutex_
+  bool stopping_ = false;   // under mutex_
+  std::thread worker_;
+};
+
+}  // namespace rigid_body_sim

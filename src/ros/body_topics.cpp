@@ -1,0 +1,114 @@
+#include "rigid_body_sim/ros/body_topics.h"
+
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/TwistStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <sensor_msgs/Imu.h>
+
+namespace rigid_body_sim {
+namespace {
+
+constexpr std::uint32_t kStateQueueSize = 10;
+constexpr std::uint32_t kWrenchQueueSize = 100;
+
+// Advertises `publisher` of `owner` with its count kept by the connect
+// callbacks, which may still be queued after the body went: they count only
+// while `owner` lives.
+template <typename Msg>
+void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic,
+                      const std::shared_ptr<BodyTopics::Topics>& owner, CountedPublisher* publisher) {
+  const std::weak_ptr<BodyTopics::Topics> alive = owner;
+  int* subscribers = &publisher->subscribers;
+  publisher->publisher = nh.advertise<Msg>(
+      topic, kStateQueueSize,
+      [alive, subscribers](const ros::SingleSubscriberPublisher&) {
+        if (const auto lock = alive.lock()) ++*subscribers;
+      },
+      [alive, subscribers](const ros::SingleSubscriberPublisher&) {
+        if (const auto lock = alive.lock()) --*subscribers;
+      });
+}
+
+}  // namespace
+
+BodyTopics::BodyTopics(const ros::NodeHandle& private_nh, bool enabled, WrenchCallback on_wrench)
+    : private_nh_(private_nh), enabled_(enabled), on_wrench_(std::move(on_wrench)) {
+  if (enabled_) worker_ = std::thread(&BodyTopics::Work, this);
+}
+
+BodyTopics::~BodyTopics() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stopping_ = true;
+  }
+  wake_.notify_one();
+  if (worker_.joinable()) worker_.join();
+}
+
+void BodyTopics::Add(const std::string& body) {
+  auto topics = std::make_shared<Topics>();
+  topics->body = body;
+  bodies_.push_back(topics);
+  if (enabled_) Push({std::move(topics), true});
+}
+
+void BodyTopics::Remove(std::size_t index) {
+  std::shared_ptr<Topics> topics = std::move(bodies_[index]);
+  topics->removed.store(true, std::memory_order_release);
+  bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(index));
+  if (enabled_) Push({std::move(topics), false});
+}
+
+void BodyTopics::Push(Task task) {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    tasks_.push_back(std::move(task));
+  }
+  wake_.notify_one();
+}
+
+void BodyTopics::Work() {
+  for (;;) {
+    Task task;
+    {
+      std::unique_lock<std::mutex> lock(mutex_);
+      wake_.wait(lock, [this] { return stopping_ || !tasks_.empty(); });
+      if (stopping_) return;
+      task = std::move(tasks_.front());
+      tasks_.pop_front();
+    }
+    if (task.advertise) {
+      // A body removed before its turn is never advertised.
+      if (!task.topics->removed.load(std::memory_order_acquire)) Advertise(task.topics);
+      continue;
+    }
+    if (task.topics->advertised.load(std::memory_order_acquire)) {
+      task.topics->pose.publisher.shutdown();
+      task.topics->twist.publisher.shutdown();
+      task.topics->odom.publisher.shutdown();
+      task.topics->imu.publisher.shutdown();
+      task.topics->applied_wrench.publisher.shutdown();
+      task.topics->wrench.shutdown();
+      advertised_.fetch_sub(1, std::memory_order_relaxed);
+    }
+  }
+}
+
+void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
+  const std::string& body = topics->body;
+  AdvertiseCounted<geometry_msgs::PoseStamped>(private_nh_, body + "/pose", topics, &topics->pose);
+  AdvertiseCounted<geometry_msgs::TwistStamped>(private_nh_, body + "/twist", topics, &topics->twist);
+  AdvertiseCounted<nav_msgs::Odometry>(private_nh_, body + "/odom", topics, &topics->odom);
+  AdvertiseCounted<sensor_msgs::Imu>(private_nh_, body + "/imu", topics, &topics->imu);
+  AdvertiseCounted<geometry_msgs::WrenchStamped>(private_nh_, body + "/applied_wrench", topics,
+                                                 &topics->applied_wrench);
+  const WrenchCallback& on_wrench = on_wrench_;
+  topics->wrench = private_nh_.subscribe<geometry_msgs::WrenchStamped>(
+      body + "/wrench", kWrenchQueueSize,
+      [&on_wrench, body](const geometry_msgs::WrenchStamped::ConstPtr& msg) { on_wrench(body, *msg); },
+      ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  topics->advertised.store(true, std::memory_order_release);
+  advertised_.fetch_add(1, std::memory_order_relaxed);
+}
+
+}  // namespace rigid_body_sim
