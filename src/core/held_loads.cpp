@@ -1,6 +1,8 @@
 #include "rigid_body_sim/core/held_loads.h"
 
 #include <algorithm>
+#include <cmath>
+#include <stdexcept>
 
 namespace rigid_body_sim::core {
 namespace {
@@ -61,6 +63,15 @@ void HeldLoads::AddCentralForce(const Eigen::Vector3d& force) { force_world_ += 
 void HeldLoads::SetTorqueProjector(const Eigen::Matrix3d& range_projector) {
   torque_projector_ = range_projector;
   projects_torque_ = !range_projector.isIdentity(0.0);
+}
+
+void HeldLoads::SetDamping(double linear_per_s, double angular_per_s) {
+  // !(c >= 0) also catches NaN; an infinite rate would make 0·∞ of the decay.
+  if (!(linear_per_s >= 0.0) || !(angular_per_s >= 0.0) || std::isinf(linear_per_s) ||
+      std::isinf(angular_per_s)) {
+    throw std::invalid_argument("damping rates must be finite and >= 0 [1/s]");
+  }
+  damping_ = {linear_per_s, angular_per_s};
 }
 
 double HeldLoads::DroppedTorque(const Eigen::Matrix3d& rotation) const {

@@ -140,6 +140,53 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
   }
 }
 
+TEST_P(EveryScheme, StepLoadedOfADampedBatchIsStepBodyByBody) {
+  // The same bodies, damped: under gravity and held forces and couples, or
+  // gravity alone (kept out of the free lanes), or no force at all, with
+  // rates from 0 to past the lanes' c·dt <= 1/16 (those bodies step one by
+  // one). Integrator::StepLoaded against Step, body by body.
+  const double dt = 1e-3;
+  World world = MakeFreeWorld(GetParam(), dt);
+  std::vector<BodyState> states = world.states();
+  std::vector<BodyState> expected = states;
+  std::vector<HeldLoads> loads(world.size());
+  std::vector<std::size_t> bodies;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    const BodyModel& model = world.model(i);
+    if (i % 4 != 3) loads[i].AddCentralForce(model.mass() * Eigen::Vector3d(0.3, -0.2, -9.81));
+    if (i % 4 == 0) {
+      const Eigen::Vector3d& offset = model.particle_offsets()[i % model.particle_count()];
+      const Eigen::Vector3d force = Eigen::Vector3d(0.5, -1.0, 0.25) * (1.0 + 0.1 * i);
+      if (i % 8 == 0) {
+        loads[i].AddBodyForce(force, offset);
+        loads[i].AddBodyCouple({0.02, 0.01, -0.03});
+      } else {
+        loads[i].AddWorldForce(force, offset);
+      }
+    }
+    const double rates_per_s[5] = {0.0, 0.3, 2.0, 40.0, 200.0};  // 200/s: c·dt = 0.2
+    loads[i].SetDamping(rates_per_s[i % 5], rates_per_s[(i + 2) % 5]);
+    bodies.push_back(i);
+  }
+  const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
+  const int steps = GetParam() == "exact_free" ? 50 : 1000;
+  for (int n = 0; n < steps; ++n) {
+    integrator->StepLoaded(world.models(), bodies, loads, dt, &states);
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      integrator->Step(world.model(i), &loads[i], dt, &expected[i]);
+    }
+  }
+  const double tolerance = 1e-16 * steps * 10;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    SCOPED_TRACE("body " + std::to_string(i));
+    ASSERT_TRUE(states[i].angular_momentum.allFinite());
+    EXPECT_LT(test::AngleBetween(states[i].orientation, expected[i].orientation), tolerance);
+    EXPECT_LT((states[i].position - expected[i].position).norm(), tolerance * 10);
+    EXPECT_LT((states[i].linear_momentum - expected[i].linear_momentum).norm(), tolerance * 10);
+    EXPECT_LT((states[i].angular_momentum - expected[i].angular_momentum).norm(), tolerance * 10);
+  }
+}
+
 TEST_P(EveryScheme, ABadBodyInABatchIsFrozenAloneAndTheOthersAreUntouched) {
   World world = MakeFreeWorld(GetParam(), 1e-3);
   World reference = MakeFreeWorld(GetParam(), 1e-3);

@@ -27,6 +27,10 @@ class HeldLoads final : public Load {
   // Restricts every torque to the range of the inertia tensor (projector P̄,
   // body axes): for a degenerate body the couple along a null axis is dropped.
   void SetTorqueProjector(const Eigen::Matrix3d& range_projector);
+  // The body's damping rates c >= 0 [1/s] (Damping); kept through Clear, as
+  // they belong to the body rather than to the wrenches of one step. Throws
+  // std::invalid_argument for a rate that is negative or not finite.
+  void SetDamping(double linear_per_s, double angular_per_s);
 
   // Norm of the couple dropped by the projector at orientation `rotation` [N m].
   double DroppedTorque(const Eigen::Matrix3d& rotation) const;
@@ -41,6 +45,7 @@ class HeldLoads final : public Load {
 
   Wrench At(double time_in_step_s, const Eigen::Matrix3d& rotation) const override;
   bool has_torque() const override { return has_torque_; }
+  Damping damping() const override { return damping_; }
   // Whether a body-axes force or couple was added.
   bool has_body_axes() const { return has_body_axes_; }
 
@@ -71,6 +76,7 @@ class HeldLoads final : public Load {
   Eigen::Vector3d torque_body_ = Eigen::Vector3d::Zero();
   Eigen::Matrix3d force_moment_ = Eigen::Matrix3d::Zero();  // C = Σ f_i r̄_iᵀ
   Eigen::Matrix3d torque_projector_ = Eigen::Matrix3d::Identity();
+  Damping damping_;
   mutable double torque_bound_ = -1.0;  // TorqueBound, once asked; < 0: not yet
   mutable PrincipalParts principal_parts_;
   mutable bool has_principal_parts_ = false;  // principal_parts_ holds for these loads

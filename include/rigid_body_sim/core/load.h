@@ -12,6 +12,13 @@ struct Wrench {
   Eigen::Vector3d torque = Eigen::Vector3d::Zero();
 };
 
+// Damping rates c >= 0 [1/s] of a body: ṗ = F − c_linear p and
+// L̇ = τ − c_angular L (p, L world axes, L about the COM).
+struct Damping {
+  double linear_per_s = 0.0;
+  double angular_per_s = 0.0;
+};
+
 class Load {
  public:
   virtual ~Load() = default;
@@ -22,6 +29,12 @@ class Load {
   // False when the torque is zero for every orientation (gravity only), which
   // lets an integrator skip the angular kick.
   virtual bool has_torque() const = 0;
+  // The damping the integrators apply besides the wrench; none by default.
+  virtual Damping damping() const { return {}; }
+  bool has_damping() const {
+    const Damping rates = damping();
+    return rates.linear_per_s > 0.0 || rates.angular_per_s > 0.0;
+  }
 };
 
 }  // namespace rigid_body_sim::core

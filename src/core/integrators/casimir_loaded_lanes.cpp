@@ -17,6 +17,8 @@ void LoadedLanes::FillIdle(std::size_t first) {
       torque_principal[k][l] = 0.0;
     }
     for (int k = 0; k < 9; ++k) moment[k][l] = 0.0;
+    linear_damping[l] = 0.0;
+    angular_damping[l] = 0.0;
   }
 }
 
@@ -24,6 +26,10 @@ void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const BodyState
                        const HeldLoads& loads) {
   LaneBodies::Load(lane, model, state);
   body_axes = body_axes || loads.has_body_axes();
+  const Damping damping = loads.damping();
+  linear_damping[lane] = damping.linear_per_s;
+  angular_damping[lane] = damping.angular_per_s;
+  damped = damped || loads.has_damping();
   const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
   for (int k = 0; k < 3; ++k) {
     force_world[k][lane] = loads.force_world()[k];
@@ -49,14 +55,25 @@ namespace {
 // frame throughout: kick, then three times drift, A B A, the rotation about L
 // and a kick, with neighbouring half kicks merged (they act at the same pose
 // and time). kBodyAxes: whether any lane holds a body-axes force or couple
-// (without, their terms are left out). q stays a unit quaternion to ~1e-16
-// through the products, so it is normalised once, at the end.
-template <bool kBodyAxes>
-inline __attribute__((always_inline)) void LoadedStep4(double h, LoadedLanes* lanes) {
+// (without, their terms are left out). kDamped: whether any lane is damped;
+// `decays` then holds each lane's DecayOver for the outer and the inner
+// sub-step, which the drift and the rotation apply as DampedDrift and
+// DampedCasimirRotation do. q stays a unit quaternion to ~1e-16 through the
+// products, so it is normalised once, at the end.
+struct LaneDecays {
+  // [sub-step: outer, inner][lane]
+  double linear_factor[2][kLanes], linear_elapsed_s[2][kLanes];
+  double angular_factor[2][kLanes], angular_elapsed_s[2][kLanes];
+};
+
+template <bool kBodyAxes, bool kDamped>
+inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecays& decays,
+                                                       LoadedLanes* lanes) {
   LoadedLanes& b = *lanes;
   const double outer = kYoshidaOuterWeight * h;
   const double inner = kYoshidaInnerWeight * h;
   const double substeps[3] = {outer, inner, outer};
+  const int substep_kind[3] = {0, 1, 0};  // index into LaneDecays
   const double kicks[4] = {0.5 * outer, 0.5 * (outer + inner), 0.5 * (inner + outer), 0.5 * outer};
   for (std::size_t l = 0; l < kLanes; ++l) {
     const Quaternion axes{b.principal_axes[0][l], b.principal_axes[1][l], b.principal_axes[2][l],
@@ -100,15 +117,25 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, LoadedLanes* la
 
     kick(kicks[0]);
     for (int s = 0; s < 3; ++s) {
-      const double sub = substeps[s];
-      for (int k = 0; k < 3; ++k) x[k] += sub * inverse_mass * p[k];
+      double drift_s = substeps[s], spin_s = substeps[s];
+      if constexpr (kDamped) {
+        drift_s = decays.linear_elapsed_s[substep_kind[s]][l];
+        spin_s = decays.angular_elapsed_s[substep_kind[s]][l];
+      }
+      for (int k = 0; k < 3; ++k) x[k] += drift_s * inverse_mass * p[k];
       double m[3];  // Π = R_WPᵀ L
       lanes::RotateInverse(q, lw[0], lw[1], lw[2], m);
-      Axis1Flow(a1, 0.5 * sub, m, &q);
-      Axis3Flow(a3, sub, m, &q);
-      Axis1Flow(a1, 0.5 * sub, m, &q);
-      const double turn = sub * casimir;
+      Axis1Flow(a1, 0.5 * spin_s, m, &q);
+      Axis3Flow(a3, spin_s, m, &q);
+      Axis1Flow(a1, 0.5 * spin_s, m, &q);
+      const double turn = spin_s * casimir;
       q = Multiply(ExpMapSmall(turn * lw[0], turn * lw[1], turn * lw[2]), q);
+      if constexpr (kDamped) {
+        for (int k = 0; k < 3; ++k) {
+          p[k] *= decays.linear_factor[substep_kind[s]][l];
+          lw[k] *= decays.angular_factor[substep_kind[s]][l];
+        }
+      }
       kick(kicks[s + 1]);
     }
 
@@ -128,12 +155,32 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, LoadedLanes* la
 }  // namespace
 
 RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
-  if (lanes->body_axes) {
-    LoadedStep4<true>(h, lanes);
+  LaneDecays decays;
+  if (lanes->damped) {
+    // The exponentials outside the lane loop, which then stays free of calls.
+    const double substeps[2] = {kYoshidaOuterWeight * h, kYoshidaInnerWeight * h};
+    for (int s = 0; s < 2; ++s) {
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const Decay linear = DecayOver(lanes->linear_damping[l], substeps[s]);
+        const Decay angular = DecayOver(lanes->angular_damping[l], substeps[s]);
+        decays.linear_factor[s][l] = linear.factor;
+        decays.linear_elapsed_s[s][l] = linear.elapsed_s;
+        decays.angular_factor[s][l] = angular.factor;
+        decays.angular_elapsed_s[s][l] = angular.elapsed_s;
+      }
+    }
+    if (lanes->body_axes) {
+      LoadedStep4<true, true>(h, decays, lanes);
+    } else {
+      LoadedStep4<false, true>(h, decays, lanes);
+    }
+  } else if (lanes->body_axes) {
+    LoadedStep4<true, false>(h, decays, lanes);
   } else {
-    LoadedStep4<false>(h, lanes);
+    LoadedStep4<false, false>(h, decays, lanes);
   }
   lanes->body_axes = false;
+  lanes->damped = false;
 }
 
 }  // namespace rigid_body_sim::core

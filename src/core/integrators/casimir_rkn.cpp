@@ -55,6 +55,10 @@ void CasimirRknIntegrator<kOrder>::Step(const BodyModel& model, const Load* load
     FreeCompositionStep(C::kFree, model, split, dt_s, state);
     return;
   }
+  if (TooStiffForComposition(load->damping(), dt_s)) {
+    CasimirStrangStep(model, split, load, 0.0, dt_s, state);
+    return;
+  }
   NestedStep(C::kOuter, C::kInner, model, split, *load, dt_s, state);
 }
 

@@ -27,6 +27,11 @@ void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load,
     FreeCompositionStep(kFree, model, split, dt_s, state);
     return;
   }
+  const Damping damping = load->damping();
+  if (TooStiffForComposition(damping, dt_s)) {
+    CasimirStrangStep(model, split, load, 0.0, dt_s, state);
+    return;
+  }
   // The three Strang steps with neighbouring half kicks merged: they act at
   // the same pose and time, so the sum is the same wrench once.
   const double outer = kYoshidaOuterWeight * dt_s;
@@ -35,8 +40,8 @@ void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load,
   Kick(*load, 0.0, 0.5 * outer, state);
   double t_s = 0.0;
   for (int s = 0; s < 3; ++s) {
-    state->position += substeps[s] * model.inverse_mass() * state->linear_momentum;
-    CasimirRotation(model, split, substeps[s], state);
+    DampedDrift(model.inverse_mass(), damping.linear_per_s, substeps[s], state);
+    DampedCasimirRotation(model, split, damping.angular_per_s, substeps[s], state);
     t_s += substeps[s];
     Kick(*load, t_s, 0.5 * (substeps[s] + (s < 2 ? substeps[s + 1] : 0.0)), state);
   }

@@ -33,11 +33,19 @@ void CasimirRotation(const BodyModel& model, const CasimirSplit& split, double h
   state->orientation = (principal * body_from_principal.conjugate()).normalized();
 }
 
+void DampedCasimirRotation(const BodyModel& model, const CasimirSplit& split, double rate_per_s,
+                           double h, BodyState* state) {
+  const Decay spin = DecayOver(rate_per_s, h);
+  CasimirRotation(model, split, spin.elapsed_s, state);
+  state->angular_momentum *= spin.factor;
+}
+
 void CasimirStrangStep(const BodyModel& model, const CasimirSplit& split, const Load* load,
                        double t_offset_s, double h, BodyState* state) {
   if (load != nullptr) Kick(*load, t_offset_s, 0.5 * h, state);
-  state->position += h * model.inverse_mass() * state->linear_momentum;
-  CasimirRotation(model, split, h, state);
+  const Damping damping = DampingOf(load);
+  DampedDrift(model.inverse_mass(), damping.linear_per_s, h, state);
+  DampedCasimirRotation(model, split, damping.angular_per_s, h, state);
   if (load != nullptr) Kick(*load, t_offset_s + h, 0.5 * h, state);
 }
 

@@ -39,8 +39,16 @@ double CasimirErrorRate(const BodyModel& model, const CasimirSplit& split, const
 // the Casimir rotation about L by c|L|h.
 void CasimirRotation(const BodyModel& model, const CasimirSplit& split, double h, BodyState* state);
 
+// CasimirRotation under angular damping c over h: each of its flows turns
+// the body at a rate linear in L, so the damped rotation is the undamped one
+// over the rescaled time (1 − e^{−ch})/c from the L it starts with, and then
+// L ← e^{−ch} L (exact, as the axis flows leave the world L unchanged).
+void DampedCasimirRotation(const BodyModel& model, const CasimirSplit& split, double rate_per_s,
+                           double h, BodyState* state);
+
 // One Strang step of length h starting t_offset_s into the step: half kick,
-// drift, CasimirRotation, half kick.
+// drift, CasimirRotation, half kick, the load's damping in the drift and the
+// rotation.
 void CasimirStrangStep(const BodyModel& model, const CasimirSplit& split, const Load* load,
                        double t_offset_s, double h, BodyState* state);
 

@@ -165,11 +165,20 @@ void FreeCompositionStep(const AxisSplitting<n>& splitting, const BodyModel& mod
 }
 
 // D(d₀h) K(k₀h) … K(k_{m−1}h) D(d_m h), each D the free flow of `inner` over
-// its d_i h.
+// its d_i h. The load's damping acts in D: the COM drift exactly
+// (DampedDrift), the rotation as the undamped one over the rescaled time
+// (DecayOver) with the L that D starts from, then L ← e^{−c d_i h} L. That
+// D is exact up to `inner`'s error, and damping, linear in p and L, keeps
+// [K, [K, [K, D]]] = 0, so the order holds. The step's p and L are
+// e^{−ch} times their start plus each kick times e^{−c s}, s the sum of the
+// drifts after it: 0.81, 0.83, 0.17, 0.19 h for McLachlan's, all >= 0; for
+// Okunbor and Skeel's the last kick (weight 1.7e-4) has s = −1.01 h, which
+// TooStiffForComposition bounds.
 template <std::size_t m, std::size_t n>
 void NestedStep(const KickSplitting<m>& outer, const AxisSplitting<n>& inner,
                 const BodyModel& model, const CasimirSplit& split, const Load& load, double h,
                 BodyState* state) {
+  const Damping damping = load.damping();
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
   Eigen::Quaterniond principal = state->orientation * body_from_principal;
   Eigen::Vector3d body_momentum = principal.conjugate() * state->angular_momentum;
@@ -177,8 +186,12 @@ void NestedStep(const KickSplitting<m>& outer, const AxisSplitting<n>& inner,
 #pragma GCC unroll 16
   for (std::size_t i = 0; i <= m; ++i) {
     const double drift = outer.drift[i] * h;
-    AxisFlows(inner, split, drift, &body_momentum, &principal);
-    CasimirFlow(model, split, drift, state, &principal);
+    const Decay spin = DecayOver(damping.angular_per_s, drift);
+    AxisFlows(inner, split, spin.elapsed_s, &body_momentum, &principal);
+    principal = ExpMap(spin.elapsed_s * split.casimir * state->angular_momentum) * principal;
+    state->angular_momentum *= spin.factor;
+    body_momentum *= spin.factor;
+    DampedDrift(model.inverse_mass(), damping.linear_per_s, drift, state);
     t += drift;
     if (i < m) PrincipalKick(model, load, t, outer.kick[i] * h, principal, state, &body_momentum);
   }

@@ -2,6 +2,7 @@
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 #include "rigid_body_sim/core/kinematics.h"
+#include "step_parts.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -16,6 +17,11 @@ Eigen::Matrix3d Skew(const Eigen::Vector3d& w) {
 
 void EulerIntegrator::Step(const BodyModel& model, const Load* load, double dt_s,
                            BodyState* state) const {
+  // Damping as a split before the lecture's step: the exact decay of p and L
+  // over dt, then the step (first order, as the step itself).
+  const Damping damping = DampingOf(load);
+  state->linear_momentum *= DecayOver(damping.linear_per_s, dt_s).factor;
+  state->angular_momentum *= DecayOver(damping.angular_per_s, dt_s).factor;
   Eigen::Matrix3d a = state->orientation.toRotationMatrix();
   // ω = I⁻¹L with I⁻¹ = A Ī⁻¹ Aᵀ: what the lecture computes at the end of the previous step.
   const Eigen::Vector3d omega = AngularVelocity(model, a, state->angular_momentum);

@@ -8,15 +8,20 @@ namespace rigid_body_sim::core {
 void ExactFreeIntegrator::Step(const BodyModel& model, const Load* load, double dt_s,
                                BodyState* state) const {
   if (load != nullptr) Kick(*load, 0.0, 0.5 * dt_s, state);
-  state->position += dt_s * model.inverse_mass() * state->linear_momentum;
+  const Damping damping = DampingOf(load);
+  DampedDrift(model.inverse_mass(), damping.linear_per_s, dt_s, state);
   // The free flow in the principal frame: q_WP = q_WB ⊗ q_BP, Π = R_WPᵀ L;
-  // L in the world does not change.
+  // L in the world does not change. Under angular damping it is the
+  // undamped flow over the rescaled time, L decaying meanwhile: exact too.
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
   const Eigen::Quaterniond principal_orientation = state->orientation * body_from_principal;
   const TorqueFreeMotion motion(model.principal_moments(),
                                 principal_orientation.conjugate() * state->angular_momentum,
                                 principal_orientation);
-  state->orientation = (motion.Orientation(dt_s) * body_from_principal.conjugate()).normalized();
+  const Decay spin = DecayOver(damping.angular_per_s, dt_s);
+  state->orientation =
+      (motion.Orientation(spin.elapsed_s) * body_from_principal.conjugate()).normalized();
+  state->angular_momentum *= spin.factor;
   if (load != nullptr) Kick(*load, dt_s, 0.5 * dt_s, state);
 }
 

@@ -2,6 +2,7 @@
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 #include "rigid_body_sim/core/kinematics.h"
+#include "step_parts.h"
 
 namespace rigid_body_sim::core {
 
@@ -13,9 +14,14 @@ void SymplecticEulerIntegrator::Step(const BodyModel& model, const Load* load, d
     state->linear_momentum += dt_s * wrench.force;
     state->angular_momentum += dt_s * wrench.torque;
   }
+  // Damping in the rotation and the drift: ω is linear in L and the COM
+  // moves with p, so both advance over the rescaled time while L and p decay.
+  const Damping damping = DampingOf(load);
+  const Decay spin = DecayOver(damping.angular_per_s, dt_s);
   const Eigen::Vector3d omega = AngularVelocity(model, a, state->angular_momentum);
-  state->orientation = (ExpMap(dt_s * omega) * state->orientation).normalized();
-  state->position += dt_s * model.inverse_mass() * state->linear_momentum;
+  state->orientation = (ExpMap(spin.elapsed_s * omega) * state->orientation).normalized();
+  state->angular_momentum *= spin.factor;
+  DampedDrift(model.inverse_mass(), damping.linear_per_s, dt_s, state);
 }
 
 }  // namespace rigid_body_sim::core
