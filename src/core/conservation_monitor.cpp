@@ -19,8 +19,11 @@ ConservationMonitor::ConservationMonitor(const World& world) { RebaseAll(world);
 
 void ConservationMonitor::RebaseAll(const World& world) {
   references_.resize(world.size());
-  loaded_.assign(world.size(), false);
-  for (std::size_t body = 0; body < world.size(); ++body) Rebase(world, body);
+  loaded_.resize(world.size());
+  for (std::size_t body = 0; body < world.size(); ++body) {
+    Rebase(world, body);
+    loaded_[body] = world.properties(body).has_damping();  // damping is a load that never goes
+  }
   sweep_cursor_ = 0;
   sweep_ = Largest{};
   last_sweep_ = Largest{};
@@ -43,7 +46,7 @@ std::optional<ConservationMonitor::Drift> ConservationMonitor::Measure(const Wor
 
 void ConservationMonitor::AddBody(const World& world) {
   references_.push_back(Of(world, world.size() - 1));
-  loaded_.push_back(false);
+  loaded_.push_back(world.properties(world.size() - 1).has_damping());
 }
 
 void ConservationMonitor::RemoveBody(std::size_t body) {

@@ -88,6 +88,8 @@ void World::CheckBody(std::size_t i) const {
 
 void World::PrepareBody(std::size_t i) {
   if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
+  const BodyProperties& properties = properties_[i];
+  loads_[i].SetDamping(properties.linear_damping_per_s, properties.angular_damping_per_s);
   const double turn_bound =
       options_.dt_s * kRateBoundFactor * models_[i].inverse_principal_moments().maxCoeff();
   const double reach = kMaxSubstepAngle / turn_bound;  // inf for a point mass
@@ -193,12 +195,14 @@ void World::Step() {
   const bool loads_changed = wrenches_.Reduce(time(), options_.wrench_timeout_s,
                                               kTimeToleranceInSteps * options_.dt_s, models_,
                                               &loads_, &loaded_);
-  if (loads_changed && has_gravity_) {
+  if (loads_changed) {
     for (std::size_t i = 0; i < models_.size(); ++i) {
-      const double scale = properties_[i].gravity_scale;
-      if (scale == 0.0) continue;
-      loads_[i].AddCentralForce(scale * models_[i].mass() * options_.gravity);
-      loaded_[i] = 1;
+      const BodyProperties& properties = properties_[i];
+      if (has_gravity_ && properties.gravity_scale != 0.0) {
+        loads_[i].AddCentralForce(properties.gravity_scale * models_[i].mass() * options_.gravity);
+        loaded_[i] = 1;
+      }
+      if (properties.has_damping()) loaded_[i] = 1;
     }
   }
   last_step_substeps_max_ = 1;

@@ -1,3 +1,4 @@
+#include <cmath>
 #include <cstring>
 
 #include <gtest/gtest.h>
@@ -142,6 +143,29 @@ TEST(World, RemovedBodyTakesItsWrenchesAndTheOthersKeepTheirs) {
   // Δp = F dt on the point body, which moved down to index 1.
   EXPECT_NEAR(world.state(1).linear_momentum.x() - point_before.linear_momentum.x(),
               4.0 * world.options().dt_s, 1e-15);
+}
+
+TEST(World, DampedBodiesDecayExponentiallyThroughTheWorld) {
+  WorldOptions options;
+  options.dt_s = 0.01;
+  std::vector<BodyState> states(2);
+  states[0].angular_momentum = {0.3, -2.0, 0.7};
+  states[1].linear_momentum = {2.0, 0.0, 0.0};
+  std::vector<BodyProperties> properties(2);
+  properties[0].angular_damping_per_s = 3.0;
+  properties[1].linear_damping_per_s = 0.5;
+  const BodyModel point("point", {{2.0, {0.0, 0.0, 0.0}}});
+  World world({test::Diag123Body(), point}, states, options, properties);
+  constexpr int kSteps = 200;
+  for (int n = 0; n < kSteps; ++n) world.Step();
+  const double t = kSteps * options.dt_s;
+  // Exact decay in the default scheme: L keeps its direction, p likewise.
+  const Eigen::Vector3d l = world.state(0).angular_momentum;
+  EXPECT_NEAR(l.norm(), states[0].angular_momentum.norm() * std::exp(-3.0 * t), 1e-13);
+  EXPECT_NEAR(l.normalized().dot(states[0].angular_momentum.normalized()), 1.0, 1e-14);
+  EXPECT_NEAR(world.state(1).linear_momentum.x(), 2.0 * std::exp(-0.5 * t), 1e-13);
+  // x = p₀ (1 − e^{−ct}) / (c M)
+  EXPECT_NEAR(world.state(1).position.x(), 2.0 * -std::expm1(-0.5 * t) / (0.5 * 2.0), 1e-13);
 }
 
 TEST(World, GravityAndWrenchesFollowTheirStartTimes) {

@@ -17,14 +17,15 @@ class ConservationMonitor {
   // Every body torque-free, referenced at the world's current state.
   explicit ConservationMonitor(const World& world);
 
-  // Takes the current states as the new references; every body torque-free
-  // again (after a reset or when the held wrenches were cleared).
+  // Takes the current states as the new references; every undamped body
+  // torque-free again (after a reset or when the held wrenches were cleared).
   void RebaseAll(const World& world);
   // Takes one body's current state as its reference (after it was set).
   void Rebase(const World& world, std::size_t body);
   // A wrench was held for the body: it no longer conserves anything.
   void MarkLoaded(std::size_t body) { loaded_[body] = true; }
-  // The world appended a body: referenced at its current state, torque-free.
+  // The world appended a body: referenced at its current state, torque-free
+  // unless damped.
   void AddBody(const World& world);
   // The world removed `body`: the sweep starts over, as its indices moved.
   void RemoveBody(std::size_t body);
