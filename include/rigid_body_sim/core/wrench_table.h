@@ -50,6 +50,9 @@ class WrenchTable {
   bool Reduce(double t_s, double timeout_s, double tolerance_s,
               const std::vector<BodyModel>& models, std::vector<HeldLoads>* loads,
               std::vector<char>* loaded);
+  // Something else summed into the loads (gravity) changed: the next Reduce
+  // sums them anew.
+  void MarkLoadsStale() { reduced_ = false; }
 
  private:
   static std::uint64_t Key(std::size_t body, std::size_t particle) {
