@@ -20,6 +20,8 @@ class StatePublisher {
   StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings, const core::World& world);
 
   void Publish(const core::World& world, const ros::Time& stamp);
+  // From the next Publish on.
+  void SetPublishTf(bool publish_tf) { publish_tf_ = publish_tf; }
 
  private:
   // A publisher with its subscriber count, kept by connect/disconnect
@@ -41,7 +43,7 @@ class StatePublisher {
 
   const std::string world_frame_;
   const bool publish_clock_;
-  const bool publish_tf_;
+  bool publish_tf_;
   const double particle_marker_diameter_m_;
   const std::vector<std::string> child_frames_;  // TF frame of each body
   // Stable addresses: the connect callbacks point at the counts.
