@@ -11,6 +11,7 @@ packages=(
   libstd-srvs-dev libvisualization-msgs-dev libdiagnostic-updater-dev
   libdiagnostic-msgs-dev libros-rosgraph-msgs-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  rosbash python3-roslib
   python3-geometry-msgs python3-std-srvs python3-diagnostic-msgs
   python3-tf2-msgs python3-visualization-msgs python3-rosgraph-msgs
   libeigen3-dev libboost-dev libgtest-dev googletest libbenchmark-dev
