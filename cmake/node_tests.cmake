@@ -16,7 +16,8 @@ set(_rbs_node_gtests
   services
   timing
   degenerate
-  fault)
+  fault
+  reconfigure)
 
 foreach(_t ${_rbs_node_gtests})
   add_rostest_gtest(${_t}_test test/ros/${_t}.test test/ros/${_t}_test.cpp)
@@ -38,9 +39,10 @@ add_rostest(test/ros/readme_examples.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/respawn.test DEPENDENCIES rigid_body_sim_node)
 
 # The node's pieces that need no master: message conversions, the wrench and
-# request checks, the scene parser.
+# request checks, the scene parser, the runtime configuration's checks.
 catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_intake_test.cpp
-  test/ros/body_state_request_test.cpp test/ros/scene_params_test.cpp)
+  test/ros/body_state_request_test.cpp test/ros/scene_params_test.cpp
+  test/ros/runtime_config_test.cpp)
 target_include_directories(ros_units_test PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(ros_units_test rigid_body_sim_ros gtest_main)
 add_dependencies(ros_units_test ${${PROJECT_NAME}_EXPORTED_TARGETS})

@@ -10,6 +10,8 @@ packages=(
   libtf2-ros-dev libtf2-eigen-dev libtf2-msgs-dev libgeometry-msgs-dev
   libstd-srvs-dev libvisualization-msgs-dev libdiagnostic-updater-dev
   libdiagnostic-msgs-dev libros-rosgraph-msgs-dev libnav-msgs-dev libsensor-msgs-dev
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  rosbash python3-roslib
   python3-geometry-msgs python3-std-srvs python3-diagnostic-msgs
   python3-tf2-msgs python3-visualization-msgs python3-rosgraph-msgs
   python3-nav-msgs python3-sensor-msgs

@@ -6,18 +6,25 @@
 namespace rigid_body_sim::core {
 
 StepPacer::StepPacer(double dt_s, double real_time_factor, double max_catch_up_s)
-    : paced_(real_time_factor > 0.0),
+    : dt_s_(dt_s),
       max_batch_(std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(max_catch_up_s / dt_s)))) {
-  if (paced_) {
-    period_ = std::chrono::duration_cast<Clock::duration>(
-        std::chrono::duration<double>(dt_s / real_time_factor));
-    period_ = std::max(period_, Clock::duration(1));
-  }
+  SetRealTimeFactor(real_time_factor, Clock::time_point{});
 }
 
 void StepPacer::Restart(Clock::time_point now) {
   anchor_ = now;
   taken_since_anchor_ = 0;
+}
+
+void StepPacer::SetRealTimeFactor(double real_time_factor, Clock::time_point now) {
+  paced_ = real_time_factor > 0.0;
+  period_ = Clock::duration::zero();
+  if (paced_) {
+    period_ = std::chrono::duration_cast<Clock::duration>(
+        std::chrono::duration<double>(dt_s_ / real_time_factor));
+    period_ = std::max(period_, Clock::duration(1));
+  }
+  Restart(now);
 }
 
 std::uint64_t StepPacer::TakeDueSteps(Clock::time_point now) {

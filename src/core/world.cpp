@@ -312,4 +312,23 @@ void World::SetBodyState(std::size_t body, const BodyState& state) {
   }
 }
 
+void World::SetGravity(const Eigen::Vector3d& gravity_mps2) {
+  if (!gravity_mps2.allFinite()) throw std::invalid_argument("gravity must be finite");
+  options_.gravity = gravity_mps2;
+  has_gravity_ = !gravity_mps2.isZero(0.0);
+  wrenches_.MarkLoadsStale();  // gravity is summed into the loads with the wrenches
+}
+
+void World::SetWrenchTimeout(double timeout_s) {
+  if (!(timeout_s >= 0.0) || !std::isfinite(timeout_s)) {
+    throw std::invalid_argument("wrench timeout must be finite and >= 0");
+  }
+  options_.wrench_timeout_s = timeout_s;  // WrenchTable::Reduce sees the change
+}
+
+void World::SetIntegrator(const std::string& name) {
+  integrator_ = MakeIntegrator(name);
+  options_.integrator = name;
+}
+
 }  // namespace rigid_body_sim::core

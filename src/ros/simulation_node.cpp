@@ -34,6 +34,16 @@ std::uint64_t PublishEverySteps(const NodeSettings& settings) {
   return std::max<std::uint64_t>(1, std::llround(settings.rate_hz / settings.publish_rate_hz));
 }
 
+void WarnIfPublishRateIsRounded(const NodeSettings& settings, std::uint64_t publish_every_steps) {
+  if (std::llround(settings.rate_hz / settings.publish_rate_hz) * settings.publish_rate_hz !=
+      settings.rate_hz) {
+    ROS_WARN("~publish_rate %g does not divide ~rate %g: publishing every %llu steps (%g Hz)",
+             settings.publish_rate_hz, settings.rate_hz,
+             static_cast<unsigned long long>(publish_every_steps),
+             settings.rate_hz / static_cast<double>(publish_every_steps));
+  }
+}
+
 }  // namespace
 
 SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
@@ -48,7 +58,9 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
                    OnBodyWrench(body, msg);
                  }),
       diagnostics_(private_nh, settings_, world_, pacer_, intake_),
-      private_nh_(private_nh) {
+      private_nh_(private_nh),
+      runtime_config_(private_nh_, settings_,
+                      [this](const NodeSettings& next) { ApplyRuntimeSettings(next); }) {
   const ros::TransportHints low_latency = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(private_nh_.subscribe("particle_wrench", kWrenchQueueSize,
                                                &SimulationNode::OnParticleWrench, this, low_latency));
@@ -69,13 +81,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
   services_.push_back(private_nh_.advertiseService("spawn_body", &SimulationNode::OnSpawnBody, this));
   services_.push_back(private_nh_.advertiseService("delete_body", &SimulationNode::OnDeleteBody, this));
 
-  if (std::llround(settings_.rate_hz / settings_.publish_rate_hz) * settings_.publish_rate_hz !=
-      settings_.rate_hz) {
-    ROS_WARN("~publish_rate %g does not divide ~rate %g: publishing every %llu steps (%g Hz)",
-             settings_.publish_rate_hz, settings_.rate_hz,
-             static_cast<unsigned long long>(publish_every_steps_),
-             settings_.rate_hz / static_cast<double>(publish_every_steps_));
-  }
+  WarnIfPublishRateIsRounded(settings_, publish_every_steps_);
 }
 
 void SimulationNode::Run() {
@@ -291,6 +297,31 @@ bool SimulationNode::OnDeleteBody(DeleteBody::Request& request, DeleteBody::Resp
   diagnostics_.OnBodyRemoved(*body);
   response.message = "deleted '" + request.body + "'";
   return true;
+
+void SimulationNode::ApplyRuntimeSettings(const NodeSettings& next) {
+  // Callbacks run between steps, so each change is in force from the next one;
+  // the step count, and so every stamp t0 + n·dt, goes on untouched.
+  if (next.real_time_factor != settings_.real_time_factor) {
+    pacer_.SetRealTimeFactor(next.real_time_factor, Clock::now());
+  }
+  if (next.publish_rate_hz != settings_.publish_rate_hz) {
+    publish_every_steps_ = PublishEverySteps(next);  // still published when n % every == 0
+    WarnIfPublishRateIsRounded(next, publish_every_steps_);
+  }
+  if (next.gravity_mps2 != settings_.gravity_mps2) world_.SetGravity(next.gravity_mps2);
+  if (next.wrench_timeout_s != settings_.wrench_timeout_s) {
+    world_.SetWrenchTimeout(next.wrench_timeout_s);
+  }
+  if (next.integrator != settings_.integrator) world_.SetIntegrator(next.integrator);
+  publisher_.SetPublishTf(next.publish_tf);
+  settings_ = next;  // NodeDiagnostics reads the real-time factor target here
+  ROS_INFO("runtime configuration applied at sim time %.3f s: integrator %s, publishing every "
+           "%llu steps, real-time factor %g, gravity [%g, %g, %g] m/s^2, wrench timeout %g s, "
+           "publish_tf %s",
+           Stamp().toSec(), world_.integrator().name(),
+           static_cast<unsigned long long>(publish_every_steps_), settings_.real_time_factor,
+           settings_.gravity_mps2.x(), settings_.gravity_mps2.y(), settings_.gravity_mps2.z(),
+           settings_.wrench_timeout_s, settings_.publish_tf ? "true" : "false");
 }
 
 }  // namespace rigid_body_sim

@@ -30,6 +30,26 @@ TEST(StepPacer, RealTimeFactorScalesThePeriod) {
   EXPECT_EQ(pacer.next_due(), t0 + microseconds(500));
 }
 
+TEST(StepPacer, ANewRealTimeFactorPacesFromNowAndKeepsTheCounters) {
+  StepPacer pacer(1e-3, 1.0, 0.1);
+  const Clock::time_point t0{};
+  pacer.Restart(t0);
+  EXPECT_EQ(pacer.TakeDueSteps(t0), 1u);
+  EXPECT_EQ(pacer.TakeDueSteps(t0 + microseconds(2500)), 2u);  // an overrun
+  pacer.SetRealTimeFactor(2.0, t0 + microseconds(2600));
+  EXPECT_EQ(pacer.next_due(), t0 + microseconds(2600));
+  EXPECT_EQ(pacer.TakeDueSteps(t0 + microseconds(2600)), 1u);
+  EXPECT_EQ(pacer.next_due(), t0 + microseconds(3100));
+  EXPECT_EQ(pacer.overruns(), 1u);
+  pacer.SetRealTimeFactor(0.0, t0 + microseconds(3000));
+  EXPECT_FALSE(pacer.paced());
+  EXPECT_EQ(pacer.TakeDueSteps(t0 + microseconds(3000)), pacer.max_batch());
+  pacer.SetRealTimeFactor(0.5, t0 + microseconds(4000));
+  EXPECT_TRUE(pacer.paced());
+  EXPECT_EQ(pacer.TakeDueSteps(t0 + microseconds(4000)), 1u);
+  EXPECT_EQ(pacer.next_due(), t0 + microseconds(6000));
+}
+
 TEST(StepPacer, ALateWakeUpCatchesUpAndCountsAnOverrun) {
   StepPacer pacer(1e-3, 1.0, 0.1);
   const Clock::time_point t0{};

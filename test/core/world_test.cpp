@@ -246,6 +246,97 @@ TEST(World, BadOptionsAreNamed) {
   }
 }
 
+
+// The setters between steps: each in force from the next step on, time and
+// states going on.
+World MakePointWorld(const WorldOptions& options) {
+  return World({test::PointBody()}, std::vector<BodyState>(1), options);
+}
+
+TEST(World, AGravityChangeMidRunGivesTheExactFallOfTheNewGFromThatStepOn) {
+  WorldOptions options;
+  options.dt_s = 0.01;
+  options.gravity = {0, 0, -9.81};
+  World world = MakePointWorld(options);
+  for (int n = 0; n < 10; ++n) world.Step();
+  world.SetGravity({1.0, 0.0, -3.0});
+  EXPECT_EQ(world.options().gravity, Eigen::Vector3d(1.0, 0.0, -3.0));
+  for (int n = 0; n < 20; ++n) world.Step();
+  // Constant acceleration on each stretch: every scheme's kicks and drifts
+  // follow it exactly (up to round-off).
+  const double t1 = 0.1, t2 = 0.2, m = 2.0;
+  const double v1_z = -9.81 * t1, z1 = -0.5 * 9.81 * t1 * t1;
+  const BodyState& point = world.state(0);
+  EXPECT_NEAR(point.linear_momentum.x(), m * 1.0 * t2, 1e-12);
+  EXPECT_NEAR(point.linear_momentum.z(), m * (v1_z - 3.0 * t2), 1e-12);
+  EXPECT_NEAR(point.position.x(), 0.5 * 1.0 * t2 * t2, 1e-12);
+  EXPECT_NEAR(point.position.z(), z1 + v1_z * t2 - 0.5 * 3.0 * t2 * t2, 1e-12);
+  EXPECT_EQ(world.step_count(), 30u);
+
+  world.SetGravity(Eigen::Vector3d::Zero());
+  const Eigen::Vector3d p = point.linear_momentum;
+  for (int n = 0; n < 5; ++n) world.Step();
+  EXPECT_EQ(point.linear_momentum, p);
+  EXPECT_THROW(world.SetGravity({0.0, std::nan(""), 0.0}), std::invalid_argument);
+  EXPECT_EQ(world.options().gravity, Eigen::Vector3d::Zero());
+}
+
+TEST(World, AWrenchTimeoutChangeAppliesToTheWrenchesAlreadyHeld) {
+  WorldOptions options;
+  options.dt_s = 0.01;
+  World world = MakePointWorld(options);  // held until replaced
+  ParticleWrench push;
+  push.force = {1.0, 0.0, 0.0};
+  world.HoldWrench(push);
+  for (int n = 0; n < 10; ++n) world.Step();  // t = 0.1
+  world.SetWrenchTimeout(0.05);  // the push, held since 0, has expired
+  world.Step();
+  EXPECT_EQ(world.wrenches().size(), 0u);
+  EXPECT_NEAR(world.state(0).linear_momentum.x(), 10 * 0.01 * 1.0, 1e-13);
+
+  push.start_s = world.time();
+  world.HoldWrench(push);
+  world.Step();
+  world.SetWrenchTimeout(0.0);  // a longer timeout keeps it
+  for (int n = 0; n < 20; ++n) world.Step();
+  EXPECT_EQ(world.wrenches().size(), 1u);
+  EXPECT_NEAR(world.state(0).linear_momentum.x(), 31 * 0.01 * 1.0, 1e-13);
+  EXPECT_THROW(world.SetWrenchTimeout(-1.0), std::invalid_argument);
+  EXPECT_EQ(world.options().wrench_timeout_s, 0.0);
+}
+
+TEST(World, AnIntegratorSwapKeepsStatesAndTimeAndStepsWithTheNewScheme) {
+  WorldOptions options;
+  options.gravity = {0, 0, -9.81};
+  World world = MakeWorld(options);
+  for (int n = 0; n < 100; ++n) world.Step();
+  const std::vector<BodyState> before = world.states();
+  const double time = world.time();
+  world.SetIntegrator("rk4");
+  EXPECT_STREQ(world.integrator().name(), "rk4");
+  EXPECT_EQ(world.options().integrator, "rk4");
+  EXPECT_EQ(world.time(), time);
+  ASSERT_EQ(world.states().size(), before.size());
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    EXPECT_EQ(std::memcmp(&world.state(i), &before[i], sizeof(BodyState)), 0) << "body " << i;
+  }
+  // The next step is rk4's from those states.
+  WorldOptions rk4 = options;
+  rk4.integrator = "rk4";
+  rk4.start_time_s = time;
+  World fresh(world.models(), before, rk4);
+  world.Step();
+  fresh.Step();
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    EXPECT_EQ(world.state(i).position, fresh.state(i).position) << "body " << i;
+    EXPECT_EQ(world.state(i).orientation.coeffs(), fresh.state(i).orientation.coeffs()) << "body " << i;
+    EXPECT_EQ(world.state(i).linear_momentum, fresh.state(i).linear_momentum) << "body " << i;
+    EXPECT_EQ(world.state(i).angular_momentum, fresh.state(i).angular_momentum) << "body " << i;
+  }
+  EXPECT_THROW(world.SetIntegrator("leapfrog"), std::invalid_argument);
+  EXPECT_STREQ(world.integrator().name(), "rk4");
+}
+
 }  // namespace
 }  // namespace rigid_body_sim::core
 

@@ -10,6 +10,9 @@ order (doc/ sorted by name). Every ```bash fenced block is split into commands
   against the node started by readme_examples.test (launch/rigid_body_sim.launch
   with its defaults: node `/rigid_body_sim`, the default scene), and its effect
   checked (below);
+- `rosrun dynamic_reconfigure dynparam set <node> <key> <value>`: run against
+  the node like the above; afterwards the parameter `<node>/<key>` holds the
+  value (the server writes what it applied back);
 - `roslaunch [options] <package> <file> [name:=value ...]`, or
   `bash scripts/run.sh [name:=value ...]` (which runs
   `roslaunch rigid_body_sim rigid_body_sim.launch "$@"`, checked in the script):
@@ -84,6 +87,7 @@ COMMAND_TIMEOUT = 20.0   # s; `rostopic pub -1` takes about 3 s
 STREAM_SECONDS = 4.0     # s a never-ending command runs before it is interrupted
 STARTUP_TIMEOUT = 30.0   # s to wait for the node's first ~bodies message
 RUN_COMMANDS = ('rostopic', 'rosservice')
+DYNPARAM_SET = ['rosrun', 'dynamic_reconfigure', 'dynparam', 'set']
 # A command that names one of these anywhere but as handled below fails the test.
 ROS_TOOLS = ('rostopic', 'rosservice', 'roslaunch', 'rostest', 'rosrun', 'rosparam', 'rosnode',
              'rosmsg', 'rossrv', 'roscore', 'rosbag', 'rosbash', 'roswtf', 'rviz', 'rqt')
@@ -199,6 +203,8 @@ def classify(command):
             if w[1] == 'pub' and not any(a in ('-1', '--once') or a.startswith('-f')
                                          for a in w[2:]):
                 kind = 'stream'
+    elif w[:4] == DYNPARAM_SET:
+        kind, rest = 'run', w[4:]
     elif w and w[0] == 'roslaunch':
         kind, rest = 'launch', w[1:]
     elif w and w[0] == 'rostest':
@@ -621,7 +627,9 @@ class ReadmeExamples(unittest.TestCase):
                 continue
             out, ctx = self.run_command(where, command, kind)
 
-            if args[0] == 'rostopic' and args[1] == 'echo':
+            if args[:4] == DYNPARAM_SET:
+                self.check_dynparam_set(where, args[4:])
+            elif args[0] == 'rostopic' and args[1] == 'echo':
                 self.assertIn('---', out, '%s: printed no message\n%s' % (where, ctx))
             elif args[0] == 'rostopic' and args[1] == 'pub':
                 pushed = self.apply_push(where, args, before)
@@ -687,6 +695,14 @@ class ReadmeExamples(unittest.TestCase):
 
         self.assertEqual(self.node_pid(), pid, 'the node restarted during the documented '
                          'examples (it crashed and was respawned)')
+
+    def check_dynparam_set(self, where, args):
+        self.assertEqual(len(args), 3, '%s: expected `dynparam set <node> <key> <value>`' % where)
+        node, key, value = args
+        self.assertNotIn('gravity', key, '%s: the test expects the default scene (no gravity)'
+                         % where)
+        self.assertEqual(rospy.get_param(node.rstrip('/') + '/' + key), yaml.safe_load(value),
+                         '%s: the node did not apply it' % where)
 
     def check_reset(self, where, initial, before):
         after = self.wait_new(self.count(), 1, 5.0, where)[-1]

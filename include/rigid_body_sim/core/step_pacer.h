@@ -18,6 +18,9 @@ class StepPacer {
 
   // The next step is due at `now` (start, and resume after a pause).
   void Restart(Clock::time_point now);
+  // Paces by `real_time_factor` from now on, the next step due at `now`;
+  // dt, the catch-up bound and the counters stay.
+  void SetRealTimeFactor(double real_time_factor, Clock::time_point now);
 
   // How many steps to take now, counted as taken: 0 when the next is not due
   // yet, several after a late wake-up (an overrun), at most the catch-up
@@ -33,7 +36,8 @@ class StepPacer {
   std::uint64_t catch_up_limit_hits() const { return catch_up_limit_hits_; }
 
  private:
-  bool paced_;
+  double dt_s_;
+  bool paced_ = false;
   Clock::duration period_{};        // wall time per step
   std::uint64_t max_batch_;
   Clock::time_point anchor_{};      // when step 0 since the anchor was due

@@ -89,6 +89,14 @@ class World {
   // Also clears the body's fault.
   void SetBodyState(std::size_t body, const BodyState& state);
 
+  // Settings changed between steps: each is in force from the next Step on;
+  // time, states and held wrenches go on. Throw std::invalid_argument on a
+  // value the constructor would reject, naming it, and then change nothing.
+  void SetGravity(const Eigen::Vector3d& gravity_mps2);  // finite
+  // Applies to the wrenches already held; >= 0, 0: held until replaced.
+  void SetWrenchTimeout(double timeout_s);
+  void SetIntegrator(const std::string& name);  // UnknownIntegratorMessage
+
   // Why `body` is frozen (kNone while it moves).
   BodyFault fault(std::size_t body) const { return faults_[body]; }
   std::size_t frozen_count() const { return frozen_count_; }

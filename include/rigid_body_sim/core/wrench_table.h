@@ -75,8 +75,6 @@ class WrenchTable {
   void AddBody(std::size_t particle_count);
   // Drops `body`'s wrenches and renumbers the bodies after it down by one.
   void RemoveBody(std::size_t body);
-  // The next Reduce sums again (the world's gravity or bodies changed).
-  void Invalidate() { reduced_ = false; }
   std::size_t size() const { return entries_.size(); }
   std::size_t job_count() const { return job_count_; }
   std::size_t job_count(std::size_t body) const { return jobs_per_body_[body]; }
@@ -96,6 +94,9 @@ class WrenchTable {
   bool Reduce(double t_s, double timeout_s, double tolerance_s,
               const std::vector<BodyModel>& models, std::vector<HeldLoads>* loads,
               std::vector<char>* loaded);
+  // Something else summed into the loads (gravity) changed: the next Reduce
+  // sums them anew.
+  void MarkLoadsStale() { reduced_ = false; }
 
  private:
   // One held wrench or job. A particle's force acts at its offset, looked up

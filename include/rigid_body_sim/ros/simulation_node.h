@@ -29,6 +29,7 @@
 #include "rigid_body_sim/core/step_pacer.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/node_diagnostics.h"
+#include "rigid_body_sim/ros/runtime_config.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/state_publisher.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
@@ -65,10 +66,12 @@ class SimulationNode {
                            ClearBodyWrenches::Response& response);
   bool OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response& response);
   bool OnDeleteBody(DeleteBody::Request& request, DeleteBody::Response& response);
+  // The runtime keys of `next` (checked by RuntimeConfig), from the next step on.
+  void ApplyRuntimeSettings(const NodeSettings& next);
 
-  const NodeSettings settings_;
+  NodeSettings settings_;  // the runtime keys change with ApplyRuntimeSettings
   core::World world_;
-  const std::uint64_t publish_every_steps_;  // decimation: rate / publish_rate, rounded
+  std::uint64_t publish_every_steps_;  // decimation: rate / publish_rate, rounded
   core::StepPacer pacer_;
   WrenchIntake intake_;
   StatePublisher publisher_;
@@ -78,6 +81,7 @@ class SimulationNode {
   ros::NodeHandle private_nh_;
   std::vector<ros::Subscriber> subscribers_;
   std::vector<ros::ServiceServer> services_;
+  RuntimeConfig runtime_config_;  // last: its callback uses everything above
 };
 
 }  // namespace rigid_body_sim

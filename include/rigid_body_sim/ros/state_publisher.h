@@ -23,6 +23,8 @@ class StatePublisher {
                  BodyTopics::WrenchCallback on_body_wrench);
 
   void Publish(const core::World& world, const ros::Time& stamp);
+  // From the next Publish on.
+  void SetPublishTf(bool publish_tf) { publish_tf_ = publish_tf; }
 
   // The world appended a body / removed body `index`: its TF frame, marker
   // and topics follow from the next cycle (a DELETE for its marker).
@@ -43,7 +45,7 @@ class StatePublisher {
 
   const std::string world_frame_;
   const bool publish_clock_;
-  const bool publish_tf_;
+  bool publish_tf_;
   const double particle_marker_diameter_m_;
   const std::string tf_prefix_;
   std::vector<std::string> child_frames_;  // TF frame of each body

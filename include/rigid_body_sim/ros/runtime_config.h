@@ -1,0 +1,52 @@
+// The node's dynamic_reconfigure server (doc/node.md, "Runtime configuration"):
+// the settings that may change while the node runs, checked before they are
+// handed on and written back to the parameter server when applied.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+
+#include <boost/thread/recursive_mutex.hpp>
+#include <dynamic_reconfigure/server.h>
+#include <ros/node_handle.h>
+#include <rigid_body_sim/SimulationNodeConfig.h>
+
+#include "rigid_body_sim/ros/scene_params.h"
+
+namespace rigid_body_sim {
+
+// The runtime keys of `settings` as the server's configuration.
+SimulationNodeConfig ToConfig(const NodeSettings& settings);
+// `settings` with the runtime keys taken from `config`.
+NodeSettings WithConfig(NodeSettings settings, const SimulationNodeConfig& config);
+// Whether two settings agree on every runtime key.
+bool SameRuntimeSettings(const NodeSettings& a, const NodeSettings& b);
+// Why a node stepping at settings.rate_hz cannot take the runtime keys of
+// `settings`, naming the first bad key; nullopt if it can.
+std::optional<std::string> WhyNotApplicable(const NodeSettings& settings);
+
+class RuntimeConfig {
+ public:
+  // Called with the settings to apply, between two steps.
+  using ApplyFn = std::function<void(const NodeSettings&)>;
+
+  // Serves ~set_parameters, ~parameter_descriptions and ~parameter_updates in
+  // private_nh's namespace, on its callback queue, starting from `initial`.
+  RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettings& initial, ApplyFn apply);
+
+ private:
+  // dynamic_reconfigure's callback: `config` is what the server then reports
+  // and writes to the parameter server, so a refused request gets the
+  // configuration in force back.
+  void OnReconfigure(SimulationNodeConfig& config, std::uint32_t level);
+
+  ros::NodeHandle private_nh_;
+  NodeSettings current_;
+  ApplyFn apply_;
+  boost::recursive_mutex mutex_;  // the server's; given so updateConfig is safe
+  std::optional<dynamic_reconfigure::Server<SimulationNodeConfig>> server_;
+};
+
+}  // namespace rigid_body_sim
