@@ -5,6 +5,8 @@ include_directories(include ${catkin_INCLUDE_DIRS})
 add_library(rigid_body_sim_ros
   src/ros/scene_params.cpp
   src/ros/conversions.cpp
+  src/ros/body_outputs.cpp
+  src/ros/imu_noise_params.cpp
   src/ros/wrench_intake.cpp
   src/ros/body_state_request.cpp
   src/ros/state_publisher.cpp

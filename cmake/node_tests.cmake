@@ -37,10 +37,11 @@ add_rostest(test/ros/invalid_scene.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/readme_examples.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/respawn.test DEPENDENCIES rigid_body_sim_node)
 
-# The node's pieces that need no master: message conversions, the wrench and
-# request checks, the scene parser.
+# The node's pieces that need no master: message conversions and the per-body
+# outputs, the wrench and request checks, the scene and IMU noise parsers.
 catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_intake_test.cpp
-  test/ros/body_state_request_test.cpp test/ros/scene_params_test.cpp)
+  test/ros/body_state_request_test.cpp test/ros/scene_params_test.cpp
+  test/ros/body_outputs_test.cpp test/ros/imu_noise_params_test.cpp)
 target_include_directories(ros_units_test PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(ros_units_test rigid_body_sim_ros gtest_main)
 add_dependencies(ros_units_test ${${PROJECT_NAME}_EXPORTED_TARGETS})
