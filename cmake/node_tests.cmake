@@ -16,7 +16,8 @@ set(_rbs_node_gtests
   services
   timing
   degenerate
-  fault)
+  fault
+  outputs)
 
 foreach(_t ${_rbs_node_gtests})
   add_rostest_gtest(${_t}_test test/ros/${_t}.test test/ros/${_t}_test.cpp)
