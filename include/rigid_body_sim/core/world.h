@@ -100,9 +100,12 @@ class World {
   // included.
   void RecordNextStep() { record_next_step_ = true; }
   // `body`'s record of the last Step, or nullptr when that Step was not
-  // recorded or the body has not stepped since Reset or SetBodyState.
+  // recorded or the body has not stepped since Reset, SetBodyState or being
+  // added.
   const StepRecord* last_step_record(std::size_t body) const {
-    return last_step_recorded_ && step_record_valid_[body] ? &step_records_[body] : nullptr;
+    return last_step_recorded_ && body < step_record_valid_.size() && step_record_valid_[body]
+               ? &step_records_[body]
+               : nullptr;
   }
 
  private:
