@@ -94,18 +94,21 @@ struct Outputs {
       wrench[body].Start(nh, sim.Name(std::string(body) + "/applied_wrench"));
     }
   }
+  // Waits once per process (later calls return the first result), so that a
+  // node without these topics fails each test at once.
   ::testing::AssertionResult Connect() {
-    const bool connected = WaitFor([&] {
+    if (!connected) connected = WaitFor([&] {
       for (const auto& entry : odom)
         if (!entry.second.Connected() || !imu[entry.first].Connected() ||
             !wrench[entry.first].Connected())
           return false;
       return true;
     }, rbs_test::kStartupTimeout);
-    return connected ? ::testing::AssertionSuccess()
+    return *connected ? ::testing::AssertionSuccess()
                      : ::testing::AssertionFailure() << "the node never advertised every "
                                                         "~<body>/odom, imu and applied_wrench";
   }
+  std::optional<bool> connected;
   ros::NodeHandle nh;
   std::map<std::string, OdomRecorder> odom;
   std::map<std::string, ImuRecorder> imu;
