@@ -7,6 +7,8 @@ find_package(yaml-cpp REQUIRED)
 add_library(rigid_body_sim_ros
   src/ros/scene_params.cpp
   src/ros/conversions.cpp
+  src/ros/body_outputs.cpp
+  src/ros/imu_noise_params.cpp
   src/ros/wrench_intake.cpp
   src/ros/body_state_request.cpp
   src/ros/wrench_job_request.cpp

@@ -17,7 +17,10 @@ set(_rbs_node_gtests
   timing
   degenerate
   fault
-  reconfigure)
+  reconfigure
+  outputs
+  body_wrenches
+  bodies_at_run_time)
 
 foreach(_t ${_rbs_node_gtests})
   add_rostest_gtest(${_t}_test test/ros/${_t}.test test/ros/${_t}_test.cpp)
@@ -38,11 +41,14 @@ add_rostest(test/ros/invalid_scene.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/readme_examples.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/respawn.test DEPENDENCIES rigid_body_sim_node)
 
-# The node's pieces that need no master: message conversions, the wrench and
-# request checks, the scene parser, the runtime configuration's checks.
+# The node's pieces that need no master: message conversions and the per-body
+# outputs, the wrench and request checks, the scene and IMU noise parsers, the
+# runtime configuration's checks.
 catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_intake_test.cpp
   test/ros/body_state_request_test.cpp test/ros/scene_params_test.cpp
-  test/ros/runtime_config_test.cpp)
+  test/ros/runtime_config_test.cpp test/ros/body_outputs_test.cpp
+  test/ros/imu_noise_params_test.cpp test/ros/wrench_job_request_test.cpp
+  test/ros/yaml_value_test.cpp)
 target_include_directories(ros_units_test PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(ros_units_test rigid_body_sim_ros gtest_main)
 add_dependencies(ros_units_test ${${PROJECT_NAME}_EXPORTED_TARGETS})

@@ -205,6 +205,9 @@ void World::Step() {
       if (properties.has_damping()) loaded_[i] = 1;
     }
   }
+  last_step_recorded_ = record_next_step_;
+  record_next_step_ = false;
+  if (last_step_recorded_) RecordStepStart();
   last_step_substeps_max_ = 1;
   for (std::size_t i = 0; i < models_.size(); ++i) {
     if (faults_[i] != BodyFault::kNone) continue;
@@ -249,6 +252,20 @@ void World::Step() {
   StepFreeBatch();
   StepLoadedBatch();
   ++steps_;
+}
+
+void World::RecordStepStart() {
+  step_records_.resize(models_.size());
+  step_record_valid_.assign(models_.size(), 1);
+  for (std::size_t i = 0; i < models_.size(); ++i) {
+    const BodyState& state = states_[i];
+    const BodyProperties& properties = properties_[i];
+    StepRecord& record = step_records_[i];
+    record.start_velocity_mps = models_[i].inverse_mass() * state.linear_momentum;
+    record.wrench = loaded_[i] ? loads_[i].At(0.0, state.orientation.toRotationMatrix()) : Wrench{};
+    record.wrench.force -= properties.linear_damping_per_s * state.linear_momentum;
+    record.wrench.torque -= properties.angular_damping_per_s * state.angular_momentum;
+  }
 }
 
 void World::StepLoadedBatch() {
@@ -302,10 +319,12 @@ void World::Reset() {
   wrenches_.Clear();
   faults_.assign(faults_.size(), BodyFault::kNone);
   frozen_count_ = 0;
+  step_record_valid_.assign(step_record_valid_.size(), 0);
 }
 
 void World::SetBodyState(std::size_t body, const BodyState& state) {
   states_.at(body) = state;
+  if (!step_record_valid_.empty()) step_record_valid_[body] = 0;
   if (faults_[body] != BodyFault::kNone) {
     faults_[body] = BodyFault::kNone;
     --frozen_count_;

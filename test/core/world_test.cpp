@@ -186,6 +186,65 @@ TEST(World, GravityAndWrenchesFollowTheirStartTimes) {
   EXPECT_EQ(world.wrenches().size(), 0u);
 }
 
+TEST(World, RecordsTheStartVelocityAndTotalWrenchOfARequestedStepOnly) {
+  // Six unit masses at ±(0.4, 0.3, 0.2) on the axes: M = 6 kg, COM at the
+  // origin, so particle 0's offset is r̄ = (0.4, 0, 0). Turned 90° about z:
+  // A r̄ = (0, 0.4, 0).
+  const BodyModel body("six", {{1.0, {0.4, 0, 0}}, {1.0, {-0.4, 0, 0}}, {1.0, {0, 0.3, 0}},
+                               {1.0, {0, -0.3, 0}}, {1.0, {0, 0, 0.2}}, {1.0, {0, 0, -0.2}}});
+  BodyState moving;
+  moving.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitZ()));
+  moving.linear_momentum = {6.0, -3.0, 1.5};  // v = (1, -0.5, 0.25)
+  moving.angular_momentum = {0.1, 0.2, -0.3};
+  std::vector<BodyProperties> properties(2);
+  properties[0].gravity_scale = 2.0;
+  properties[0].linear_damping_per_s = 0.5;
+  properties[0].angular_damping_per_s = 0.25;
+  properties[1].gravity_scale = 0.0;  // "resting": at rest and unloaded, skipped by Step
+  WorldOptions options;
+  options.gravity = {0.0, 0.0, -9.81};
+  World world({body, BodyModel("resting", {{1.0, {0, 0, 0}}})}, {moving, BodyState{}}, options,
+              properties);
+  ParticleWrench push;
+  push.body = 0;
+  push.particle = 0;
+  push.force = {0.0, 2.0, -1.0};  // world axes
+  world.HoldWrench(push);
+
+  EXPECT_EQ(world.last_step_record(0), nullptr) << "no step yet";
+  world.RecordNextStep();
+  world.Step();
+  const StepRecord* record = world.last_step_record(0);
+  ASSERT_NE(record, nullptr);
+  EXPECT_EQ(record->start_velocity_mps, Eigen::Vector3d(1.0, -0.5, 0.25));
+  // F = f + s M g − c_lin p;  τ = (A r̄) × f − c_ang L = (−0.4, 0, 0) − c_ang L.
+  const Eigen::Vector3d force(0.0 - 3.0, 2.0 + 1.5, -1.0 - 2.0 * 6.0 * 9.81 - 0.75);
+  const Eigen::Vector3d torque(-0.4 - 0.025, -0.05, 0.075);
+  // Round-off of A (a few ulps) times |r̄||f| and of the sums (|F| ≈ 120 N).
+  EXPECT_LT((record->wrench.force - force).norm(), 1e-12);
+  EXPECT_LT((record->wrench.torque - torque).norm(), 1e-15);
+  const StepRecord* resting = world.last_step_record(1);
+  ASSERT_NE(resting, nullptr) << "a body skipped at rest has stepped too";
+  EXPECT_EQ(resting->start_velocity_mps, Eigen::Vector3d::Zero());
+  EXPECT_EQ(resting->wrench.force, Eigen::Vector3d::Zero());
+  EXPECT_EQ(resting->wrench.torque, Eigen::Vector3d::Zero());
+
+  world.Step();
+  EXPECT_EQ(world.last_step_record(0), nullptr) << "the last step was not recorded";
+
+  world.RecordNextStep();
+  world.Step();
+  ASSERT_NE(world.last_step_record(0), nullptr);
+  world.SetBodyState(0, moving);
+  EXPECT_EQ(world.last_step_record(0), nullptr) << "SetBodyState starts the body afresh";
+  EXPECT_NE(world.last_step_record(1), nullptr) << "the other body keeps its record";
+  world.Reset();
+  EXPECT_EQ(world.last_step_record(1), nullptr) << "Reset starts every body afresh";
+  world.RecordNextStep();
+  world.Step();
+  EXPECT_NE(world.last_step_record(0), nullptr);
+}
+
 TEST(World, ResetRestoresBodiesAndClearsWrenchesButTimeGoesOn) {
   World world = MakeWorld(WorldOptions{});
   ParticleWrench push;

@@ -17,6 +17,7 @@
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/step_record.h"
 #include "rigid_body_sim/core/wrench_table.h"
 
 namespace rigid_body_sim::core {
@@ -116,7 +117,27 @@ class World {
   // principal axis, which was dropped.
   std::uint64_t dropped_couple_count() const { return dropped_couples_; }
 
+  // Opt-in record of one step (a pass over every body, so off unless asked):
+  // the next Step keeps every body's StepRecord, frozen and resting bodies
+  // included.
+  void RecordNextStep() { record_next_step_ = true; }
+  // `body`'s record of the last Step, or nullptr when that Step was not
+  // recorded or the body has not stepped since Reset, SetBodyState or being
+  // added.
+  const StepRecord* last_step_record(std::size_t body) const {
+    return last_step_recorded_ && body < step_record_valid_.size() && step_record_valid_[body]
+               ? &step_records_[body]
+               : nullptr;
+  }
+
  private:
+  // Fills step_records_ from the states and loads at the start of a Step.
+  void RecordStepStart();
+  bool record_next_step_ = false;
+  bool last_step_recorded_ = false;
+  std::vector<StepRecord> step_records_;
+  std::vector<char> step_record_valid_;  // per body: stepped since Reset / SetBodyState
+
   // After a body's step: L projected into the range of a rank-deficient I,
   // then the CheckState bounds (a body that breaks one gets `before` back and
   // is frozen).

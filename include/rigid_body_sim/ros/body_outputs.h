@@ -1,0 +1,56 @@
+// The per-body messages a robotics stack consumes (doc/node.md, "Per-body
+// outputs"): odometry, a simulated IMU and the applied wrench. Pure builders
+// over a published state and the core's record of the step that reached it;
+// the caller passes the stamp, the simulation time of that state.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include <geometry_msgs/WrenchStamped.h>
+#include <nav_msgs/Odometry.h>
+#include <ros/time.h>
+#include <sensor_msgs/Imu.h>
+
+#include <Eigen/Core>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/imu_noise.h"
+#include "rigid_body_sim/core/load.h"
+
+namespace rigid_body_sim {
+
+// Header in the world frame, child frame the body's; the COM pose, and the
+// COM velocity and angular velocity in body axes (Aᵀv, Aᵀω) as nav_msgs
+// defines the twist. Covariances 0: ground truth.
+nav_msgs::Odometry ToOdometryMsg(const core::BodyModel& model, const core::BodyState& state,
+                                 const std::string& world_frame_id,
+                                 const std::string& body_frame_id, const ros::Time& stamp);
+
+// What the IMU at the body's COM needs beyond the published state.
+struct ImuInputs {
+  Eigen::Vector3d previous_velocity_mps = Eigen::Vector3d::Zero();  // v a step before, world
+  double dt_s = 0.0;
+  Eigen::Vector3d gravity_mps2 = Eigen::Vector3d::Zero();  // the world's g
+  double gravity_scale = 1.0;                              // the body's s
+  std::size_t body = 0;    // the body's index, a part of the noise key
+  std::uint64_t step = 0;  // steps since start of the published state, the noise key's n
+};
+
+// REP 145 in the body frame: the orientation, Aᵀω and the specific force
+// Aᵀ((v − v_prev)/dt − s g), each with white noise keyed by (seed, body,
+// step) and a diagonal covariance σ² (zeros when exact).
+sensor_msgs::Imu ToImuMsg(const core::BodyModel& model, const core::BodyState& state,
+                          const ImuInputs& inputs, const core::ImuNoise& noise,
+                          const std::string& body_frame_id, const ros::Time& stamp);
+
+// The total wrench of a step (world axes, about the COM) in the axes of the
+// body frame of the published state, so that rviz draws it on the body.
+geometry_msgs::WrenchStamped ToAppliedWrenchMsg(const core::BodyState& state,
+                                                const core::Wrench& world_wrench,
+                                                const std::string& body_frame_id,
+                                                const ros::Time& stamp);
+
+}  // namespace rigid_body_sim
