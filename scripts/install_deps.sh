@@ -8,7 +8,6 @@ packages=(
   ros-core-dev libroscpp-dev librostest-dev python3-rostest
   ros-message-generation ros-message-runtime
   libtf2-ros-dev libtf2-eigen-dev libtf2-msgs-dev libgeometry-msgs-dev
-  libnav-msgs-dev libsensor-msgs-dev
   libstd-srvs-dev libvisualization-msgs-dev libdiagnostic-updater-dev
   libdiagnostic-msgs-dev libros-rosgraph-msgs-dev libnav-msgs-dev libsensor-msgs-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure

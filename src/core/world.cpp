@@ -146,6 +146,8 @@ void World::RemoveBody(std::size_t body) {
   at(loaded_);
   at(faults_);
   at(one_step_momentum_sq_);
+  if (body < step_records_.size()) at(step_records_);
+  if (body < step_record_valid_.size()) at(step_record_valid_);
   wrenches_.RemoveBody(body);  // sums again: loads_ moved with their bodies
 }
 

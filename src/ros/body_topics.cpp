@@ -11,22 +11,24 @@ namespace {
 constexpr std::uint32_t kStateQueueSize = 10;
 constexpr std::uint32_t kWrenchQueueSize = 100;
 
-// Advertises `publisher` of `owner` with its count kept by the connect
-// callbacks, which may still be queued after the body went: they count only
-// while `owner` lives.
+// Advertises `publisher` of `owner` with its count (and `total`, if given)
+// kept by the connect callbacks. They run on the stepping thread and may
+// still be queued after the body went: they count only while it is there.
 template <typename Msg>
 void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic,
-                      const std::shared_ptr<BodyTopics::Topics>& owner, CountedPublisher* publisher) {
+                      const std::shared_ptr<BodyTopics::Topics>& owner, CountedPublisher* publisher,
+                      int* total = nullptr) {
   const std::weak_ptr<BodyTopics::Topics> alive = owner;
   int* subscribers = &publisher->subscribers;
+  const auto count = [alive, subscribers, total](int change) {
+    const auto topics = alive.lock();
+    if (!topics || topics->removed.load(std::memory_order_relaxed)) return;
+    *subscribers += change;
+    if (total != nullptr) *total += change;
+  };
   publisher->publisher = nh.advertise<Msg>(
-      topic, kStateQueueSize,
-      [alive, subscribers](const ros::SingleSubscriberPublisher&) {
-        if (const auto lock = alive.lock()) ++*subscribers;
-      },
-      [alive, subscribers](const ros::SingleSubscriberPublisher&) {
-        if (const auto lock = alive.lock()) --*subscribers;
-      });
+      topic, kStateQueueSize, [count](const ros::SingleSubscriberPublisher&) { count(+1); },
+      [count](const ros::SingleSubscriberPublisher&) { count(-1); });
 }
 
 }  // namespace
@@ -55,6 +57,7 @@ void BodyTopics::Add(const std::string& body) {
 void BodyTopics::Remove(std::size_t index) {
   std::shared_ptr<Topics> topics = std::move(bodies_[index]);
   topics->removed.store(true, std::memory_order_release);
+  step_record_subscribers_ -= topics->imu.subscribers + topics->applied_wrench.subscribers;
   bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(index));
   if (enabled_) Push({std::move(topics), false});
 }
@@ -99,9 +102,10 @@ void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
   AdvertiseCounted<geometry_msgs::PoseStamped>(private_nh_, body + "/pose", topics, &topics->pose);
   AdvertiseCounted<geometry_msgs::TwistStamped>(private_nh_, body + "/twist", topics, &topics->twist);
   AdvertiseCounted<nav_msgs::Odometry>(private_nh_, body + "/odom", topics, &topics->odom);
-  AdvertiseCounted<sensor_msgs::Imu>(private_nh_, body + "/imu", topics, &topics->imu);
+  AdvertiseCounted<sensor_msgs::Imu>(private_nh_, body + "/imu", topics, &topics->imu,
+                                     &step_record_subscribers_);
   AdvertiseCounted<geometry_msgs::WrenchStamped>(private_nh_, body + "/applied_wrench", topics,
-                                                 &topics->applied_wrench);
+                                                 &topics->applied_wrench, &step_record_subscribers_);
   const WrenchCallback& on_wrench = on_wrench_;
   topics->wrench = private_nh_.subscribe<geometry_msgs::WrenchStamped>(
       body + "/wrench", kWrenchQueueSize,

@@ -8,6 +8,7 @@
 
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
+#include "rigid_body_sim/ros/imu_noise_params.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -375,6 +376,7 @@ void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies) {
 Scene LoadScene(const ros::NodeHandle& private_nh) {
   Scene scene;
   scene.settings = ReadSettings(private_nh);
+  scene.settings.imu_noise = ReadImuNoise(private_nh);
   XmlRpcValue bodies;
   if (!private_nh.getParam("bodies", bodies)) {
     throw SceneError("~bodies is missing (load a scene, e.g. config/default_scene.yaml)");

@@ -100,7 +100,7 @@ void SimulationNode::Run() {
     Clock::time_point now = Clock::now();
     if (!paused_) {
       for (std::uint64_t due = pacer_.TakeDueSteps(now); due > 0; --due) {
-        StepOnce();
+        StepOnce((world_.step_count() + 1) % publish_every_steps_ == 0);
         if (AtPublishBoundary()) publisher_.Publish(world_, Stamp());
       }
     }
@@ -118,7 +118,9 @@ void SimulationNode::Run() {
   }
 }
 
-void SimulationNode::StepOnce() {
+void SimulationNode::StepOnce(bool publishes_after) {
+  // The IMU and the applied wrench read the step that reached a published state.
+  if (publishes_after && publisher_.wants_step_record()) world_.RecordNextStep();
   const Clock::time_point start = Clock::now();
   world_.Step();
   diagnostics_.RecordStep(Clock::now() - start, Stamp());
@@ -187,7 +189,7 @@ bool SimulationNode::OnStep(Step::Request& request, Step::Response& response) {
     response.message = "steps must be >= 1";
     return true;
   }
-  for (std::uint32_t i = 0; i < request.steps; ++i) StepOnce();
+  for (std::uint32_t i = 0; i < request.steps; ++i) StepOnce(i + 1 == request.steps);
   publisher_.Publish(world_, Stamp());
   response.success = true;
   response.sim_time = Stamp().toSec();
@@ -297,6 +299,7 @@ bool SimulationNode::OnDeleteBody(DeleteBody::Request& request, DeleteBody::Resp
   diagnostics_.OnBodyRemoved(*body);
   response.message = "deleted '" + request.body + "'";
   return true;
+}
 
 void SimulationNode::ApplyRuntimeSettings(const NodeSettings& next) {
   // Callbacks run between steps, so each change is in force from the next one;

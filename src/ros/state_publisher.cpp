@@ -8,6 +8,7 @@
 #include <visualization_msgs/MarkerArray.h>
 
 #include "rigid_body_sim/core/kinematics.h"
+#include "rigid_body_sim/ros/body_outputs.h"
 #include "rigid_body_sim/ros/conversions.h"
 
 namespace rigid_body_sim {
@@ -48,6 +49,7 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
       publish_tf_(settings.publish_tf),
       particle_marker_diameter_m_(settings.particle_marker_diameter_m),
       tf_prefix_(settings.tf_prefix),
+      imu_noise_(settings.imu_noise),
       body_topics_(private_nh, settings.per_body_topics, std::move(on_body_wrench)) {
   ros::NodeHandle root;
   Advertise<tf2_msgs::TFMessage>(root, "/tf", kTfQueueSize, &tf_);
@@ -115,6 +117,27 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
       twist.header.frame_id = world_frame_;
       twist.twist = ToTwistMsg(world.model(body), world.state(body));
       topics->twist.publisher.publish(twist);
+    }
+    if (topics->odom.wanted()) {
+      topics->odom.publisher.publish(ToOdometryMsg(world.model(body), world.state(body),
+                                                   world_frame_, child_frames_[body], stamp));
+    }
+    const core::StepRecord* record = world.last_step_record(body);
+    if (record == nullptr) continue;  // no step since start, reset, spawn or set state
+    if (topics->imu.wanted()) {
+      ImuInputs inputs;
+      inputs.previous_velocity_mps = record->start_velocity_mps;
+      inputs.dt_s = world.options().dt_s;
+      inputs.gravity_mps2 = world.options().gravity;
+      inputs.gravity_scale = world.properties(body).gravity_scale;
+      inputs.body = body;
+      inputs.step = world.step_count();
+      topics->imu.publisher.publish(
+          ToImuMsg(world.model(body), world.state(body), inputs, imu_noise_, child_frames_[body], stamp));
+    }
+    if (topics->applied_wrench.wanted()) {
+      topics->applied_wrench.publisher.publish(
+          ToAppliedWrenchMsg(world.state(body), record->wrench, child_frames_[body], stamp));
     }
   }
 }

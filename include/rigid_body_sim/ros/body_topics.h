@@ -67,6 +67,9 @@ class BodyTopics {
     const Topics* topics = bodies_[index].get();
     return topics != nullptr && topics->advertised.load(std::memory_order_acquire) ? topics : nullptr;
   }
+  // Subscribers to any body's imu or applied_wrench, which need the world to
+  // record the step before a publish cycle.
+  int step_record_subscribers() const { return step_record_subscribers_; }
   // How many bodies' topics are advertised (diagnostics; start-up progress).
   std::size_t advertised_count() const { return advertised_.load(std::memory_order_relaxed); }
   std::size_t size() const { return bodies_.size(); }
@@ -84,6 +87,7 @@ class BodyTopics {
   const bool enabled_;
   const WrenchCallback on_wrench_;
   std::vector<std::shared_ptr<Topics>> bodies_;  // stepping thread only
+  int step_record_subscribers_ = 0;              // stepping thread only
   std::atomic<std::size_t> advertised_{0};
   std::mutex mutex_;
   std::condition_variable wake_;

@@ -13,6 +13,7 @@
 
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_properties.h"
+#include "rigid_body_sim/core/imu_noise.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/world.h"
@@ -33,6 +34,7 @@ struct NodeSettings {
   // Each body's own topics (~<body>/pose, ...) advertised (extension): off
   // spares the master 6 registrations per body in very large scenes.
   bool per_body_topics = true;
+  core::ImuNoise imu_noise;  // ~imu_*_stddev, ~imu_seed; exact by default
   double particle_marker_diameter_m = 0.04;  // ~particles sphere size (extension)
   double status_period_s = 1.0;  // the INFO status line's period, 0: never (extension)
   // Most substeps of dt/n one body may take in a step (extension); the

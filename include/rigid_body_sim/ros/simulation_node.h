@@ -47,7 +47,8 @@ class SimulationNode {
  private:
   using Clock = core::StepPacer::Clock;
 
-  void StepOnce();
+  // One step; `publishes_after` when its state will be published.
+  void StepOnce(bool publishes_after);
   // The ROS stamp of the world's current state: start + n·dt.
   ros::Time Stamp() const;
   bool AtPublishBoundary() const;

@@ -32,6 +32,9 @@ class StatePublisher {
   void RemoveBody(std::size_t index);
 
   const BodyTopics& body_topics() const { return body_topics_; }
+  // Whether the step before the next publish must be recorded
+  // (core::World::RecordNextStep) for someone's imu or applied_wrench.
+  bool wants_step_record() const { return body_topics_.step_record_subscribers() > 0; }
 
  private:
   template <typename Msg>
@@ -48,6 +51,7 @@ class StatePublisher {
   bool publish_tf_;
   const double particle_marker_diameter_m_;
   const std::string tf_prefix_;
+  const core::ImuNoise imu_noise_;
   std::vector<std::string> child_frames_;  // TF frame of each body
   // Each body's ~particles marker id: its scene index, then one more per spawn,
   // so that a delete does not renumber the others in rviz.
