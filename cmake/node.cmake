@@ -14,6 +14,7 @@ add_library(rigid_body_sim_ros
   src/ros/wrench_job_request.cpp
   src/ros/yaml_value.cpp
   src/ros/body_topics.cpp
+  src/ros/log_thread.cpp
   src/ros/state_publisher.cpp
   src/ros/node_diagnostics.cpp
   src/ros/runtime_config.cpp

@@ -1,5 +1,7 @@
 #include "rigid_body_sim/ros/node_diagnostics.h"
 
+#include "rigid_body_sim/ros/log_thread.h"
+
 #include <optional>
 #include <string>
 
@@ -51,9 +53,11 @@ void NodeDiagnostics::ReportNewFaults(const ros::Time& stamp) {
     const core::BodyFault fault = world_.fault(body);
     if (fault == core::BodyFault::kNone || reported_faults_[body] == fault) continue;
     reported_faults_[body] = fault;
-    ROS_ERROR_THROTTLE(1.0, "body '%s' frozen at its last finite state (%s) at t = %.6f s; "
-                       "~reset or ~set_body_state brings it back",
-                       world_.model(body).name().c_str(), core::ToString(fault), stamp.toSec());
+    if (!fault_errors_.Ready()) continue;
+    LogOffThread(LogLevel::kError,
+                 Format("body '%s' frozen at its last finite state (%s) at t = %.6f s; "
+                        "~reset or ~set_body_state brings it back",
+                        world_.model(body).name().c_str(), core::ToString(fault), stamp.toSec()));
   }
 }
 
@@ -91,16 +95,16 @@ void NodeDiagnostics::Report(Clock::time_point now, const ros::Time& stamp, bool
   paused_ = paused;
   stamp_ = stamp;
 
-  // Every log message costs roscpp O(advertised topics) in this thread (it
-  // lists them all in the /rosout message): ~3.5 ms at 10⁴ bodies.
   if (settings_.status_period_s > 0.0 && now >= next_status_) {
     const std::string substeps =
         substeps_max_ > 1 ? ", up to " + std::to_string(substeps_max_) + " substeps" : "";
-    ROS_INFO("sim time %.3f s (%.3f s since start), real-time factor %.3f%s, %zu bodies, "
-             "step %.1f us (max %.1f us)%s, %llu overruns",
-             stamp.toSec(), world_.time(), achieved_real_time_factor_, paused ? " (paused)" : "",
-             world_.size(), step_time_mean_us_, step_time_max_us_, substeps.c_str(),
-             static_cast<unsigned long long>(pacer_.overruns() - overruns_at_last_status_));
+    LogOffThread(LogLevel::kInfo,
+                 Format("sim time %.3f s (%.3f s since start), real-time factor %.3f%s, %zu bodies, "
+                        "step %.1f us (max %.1f us)%s, %llu overruns",
+                        stamp.toSec(), world_.time(), achieved_real_time_factor_,
+                        paused ? " (paused)" : "", world_.size(), step_time_mean_us_,
+                        step_time_max_us_, substeps.c_str(),
+                        static_cast<unsigned long long>(pacer_.overruns() - overruns_at_last_status_)));
     overruns_at_last_status_ = pacer_.overruns();
     next_status_ = now + std::chrono::duration_cast<Clock::duration>(
                              std::chrono::duration<double>(settings_.status_period_s));

@@ -7,6 +7,7 @@
 #include <ros/console.h>
 
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/ros/log_thread.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -96,7 +97,8 @@ void RuntimeConfig::OnReconfigure(SimulationNodeConfig& config, std::uint32_t /*
   const NodeSettings requested = WithConfig(current_, config);
   if (SameRuntimeSettings(requested, current_)) return;
   if (const std::optional<std::string> why = WhyNotApplicable(requested)) {
-    ROS_WARN("dynamic_reconfigure: %s; not applied, the configuration in force stays", why->c_str());
+    LogOffThread(LogLevel::kWarn, "dynamic_reconfigure: " + *why +
+                                      "; not applied, the configuration in force stays");
     config = ToConfig(current_);
     return;
   }

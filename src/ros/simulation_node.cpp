@@ -6,6 +6,7 @@
 #include <ros/callback_queue.h>
 
 #include "rigid_body_sim/ros/body_state_request.h"
+#include "rigid_body_sim/ros/log_thread.h"
 #include "rigid_body_sim/ros/wrench_job_request.h"
 #include "rigid_body_sim/ros/yaml_value.h"
 
@@ -163,7 +164,8 @@ void SimulationNode::OnBodyWrench(const std::string& body, const geometry_msgs::
 bool SimulationNode::OnReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_.Reset();
   diagnostics_.OnReset();
-  ROS_INFO("reset: every body back to its initial state at sim time %.3f s", Stamp().toSec());
+  LogOffThread(LogLevel::kInfo,
+               Format("reset: every body back to its initial state at sim time %.3f s", Stamp().toSec()));
   return true;
 }
 
@@ -318,13 +320,15 @@ void SimulationNode::ApplyRuntimeSettings(const NodeSettings& next) {
   if (next.integrator != settings_.integrator) world_.SetIntegrator(next.integrator);
   publisher_.SetPublishTf(next.publish_tf);
   settings_ = next;  // NodeDiagnostics reads the real-time factor target here
-  ROS_INFO("runtime configuration applied at sim time %.3f s: integrator %s, publishing every "
-           "%llu steps, real-time factor %g, gravity [%g, %g, %g] m/s^2, wrench timeout %g s, "
-           "publish_tf %s",
-           Stamp().toSec(), world_.integrator().name(),
-           static_cast<unsigned long long>(publish_every_steps_), settings_.real_time_factor,
-           settings_.gravity_mps2.x(), settings_.gravity_mps2.y(), settings_.gravity_mps2.z(),
-           settings_.wrench_timeout_s, settings_.publish_tf ? "true" : "false");
+  LogOffThread(LogLevel::kInfo,
+               Format("runtime configuration applied at sim time %.3f s: integrator %s, publishing "
+                      "every %llu steps, real-time factor %g, gravity [%g, %g, %g] m/s^2, wrench "
+                      "timeout %g s, publish_tf %s",
+                      Stamp().toSec(), world_.integrator().name(),
+                      static_cast<unsigned long long>(publish_every_steps_),
+                      settings_.real_time_factor, settings_.gravity_mps2.x(),
+                      settings_.gravity_mps2.y(), settings_.gravity_mps2.z(),
+                      settings_.wrench_timeout_s, settings_.publish_tf ? "true" : "false"));
 }
 
 }  // namespace rigid_body_sim

@@ -1,8 +1,8 @@
 #include "rigid_body_sim/ros/wrench_intake.h"
 
-#include <ros/console.h>
 
 #include "rigid_body_sim/ros/conversions.h"
+#include "rigid_body_sim/ros/log_thread.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -172,15 +172,19 @@ std::optional<core::BodyWrench> WrenchIntake::TakeBodyWrench(const geometry_msgs
 void WrenchIntake::Reject(const char* what, WrenchMsgRejection reason, const std::string& detail) {
   ++rejected_messages_;
   ++rejected_by_reason_[static_cast<std::size_t>(reason)];
-  ROS_WARN_THROTTLE(1.0, "rejected a %s (%s): %s (%llu rejected so far)", what, ToString(reason),
-                    detail.c_str(), static_cast<unsigned long long>(rejected_messages_));
+  if (!warnings_.Ready()) return;
+  LogOffThread(LogLevel::kWarn,
+               Format("rejected a %s (%s): %s (%llu rejected so far)", what, ToString(reason),
+                      detail.c_str(), static_cast<unsigned long long>(rejected_messages_)));
 }
 
 void WrenchIntake::RejectExcessEntries(std::size_t count) {
   rejected_messages_ += count;
   rejected_by_reason_[static_cast<std::size_t>(WrenchMsgRejection::kTooManyEntries)] += count;
-  ROS_WARN_THROTTLE(1.0, "rejected %zu array entries past the first %zu (too_many_entries)", count,
-                    kMaxArrayEntries);
+  if (!warnings_.Ready()) return;
+  LogOffThread(LogLevel::kWarn,
+               Format("rejected %zu array entries past the first %zu (too_many_entries)", count,
+                      kMaxArrayEntries));
 }
 
 }  // namespace rigid_body_sim

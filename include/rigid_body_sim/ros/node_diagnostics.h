@@ -14,6 +14,7 @@
 #include "rigid_body_sim/core/conservation_monitor.h"
 #include "rigid_body_sim/core/step_pacer.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/log_thread.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
 
@@ -72,6 +73,7 @@ class NodeDiagnostics {
   Window window_;
   std::size_t frozen_seen_ = 0;
   std::vector<core::BodyFault> reported_faults_;  // last fault logged per body
+  LogThrottle fault_errors_{1.0};                 // one frozen-body line a second at most
   // The last completed window, as reported.
   double step_time_mean_us_ = 0.0;
   double step_time_max_us_ = 0.0;

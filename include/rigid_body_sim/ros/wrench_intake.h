@@ -21,6 +21,7 @@
 
 #include "rigid_body_sim/core/wrench_table.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/log_thread.h"
 
 namespace rigid_body_sim {
 
@@ -130,6 +131,7 @@ class WrenchIntake {
   void Reject(const char* what, WrenchMsgRejection reason, const std::string& detail);
 
   WrenchFrames frames_;
+  LogThrottle warnings_{1.0};  // one warning a second at most
   std::uint64_t rejected_messages_ = 0;
   std::array<std::uint64_t, kWrenchMsgRejectionCount> rejected_by_reason_{};
 };
