@@ -23,11 +23,12 @@ double Microseconds(std::chrono::steady_clock::duration duration) {
 
 NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& private_nh, const NodeSettings& settings,
                                  const core::World& world, const core::StepPacer& pacer,
-                                 const WrenchIntake& intake)
+                                 const WrenchIntake& intake, const BodyTopics& body_topics)
     : settings_(settings),
       world_(world),
       pacer_(pacer),
       intake_(intake),
+      body_topics_(body_topics),
       conservation_(world),
       sweep_per_step_(world.size() / kStepsPerConservationSweep + 1),
       updater_(ros::NodeHandle(), private_nh),
@@ -142,7 +143,10 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
   status.add("catch_up_limit_hits", pacer_.catch_up_limit_hits());
   status.add("real_time_factor_target", settings_.real_time_factor);
   status.add("real_time_factor_achieved", achieved_real_time_factor_);
+  status.add("bodies", world_.size());
+  status.add("bodies_with_topics", body_topics_.advertised_count());
   status.add("held_wrenches", world_.wrenches().size());
+  status.add("wrench_jobs", world_.wrenches().job_count());
   status.add("rejected_messages", intake_.rejected_messages());
   for (std::size_t reason = 1; reason < kWrenchMsgRejectionCount; ++reason) {
     const auto rejection = static_cast<WrenchMsgRejection>(reason);

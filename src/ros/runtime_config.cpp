@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <vector>
 
-#include <ros/console.h>
 
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/ros/log_thread.h"

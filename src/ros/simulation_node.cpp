@@ -58,7 +58,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
                  [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
                    OnBodyWrench(body, msg);
                  }),
-      diagnostics_(private_nh, settings_, world_, pacer_, intake_),
+      diagnostics_(private_nh, settings_, world_, pacer_, intake_, publisher_.body_topics()),
       private_nh_(private_nh),
       runtime_config_(private_nh_, settings_,
                       [this](const NodeSettings& next) { ApplyRuntimeSettings(next); }) {

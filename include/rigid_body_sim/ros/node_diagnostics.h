@@ -14,6 +14,7 @@
 #include "rigid_body_sim/core/conservation_monitor.h"
 #include "rigid_body_sim/core/step_pacer.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_topics.h"
 #include "rigid_body_sim/ros/log_thread.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
@@ -29,7 +30,7 @@ class NodeDiagnostics {
   // Reads what it reports from the node's parts, which must outlive it.
   NodeDiagnostics(const ros::NodeHandle& private_nh, const NodeSettings& settings,
                   const core::World& world, const core::StepPacer& pacer,
-                  const WrenchIntake& intake);
+                  const WrenchIntake& intake, const BodyTopics& body_topics);
 
   // Stepping starts now, at the world's current time.
   void Start(Clock::time_point now);
@@ -67,6 +68,7 @@ class NodeDiagnostics {
   const core::World& world_;
   const core::StepPacer& pacer_;
   const WrenchIntake& intake_;
+  const BodyTopics& body_topics_;
   core::ConservationMonitor conservation_;
   const std::size_t sweep_per_step_;  // bodies the conservation sweep measures per step
   diagnostic_updater::Updater updater_;
