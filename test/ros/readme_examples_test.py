@@ -37,15 +37,22 @@ For each command run against the node:
 - `rosservice call`: when the service's response has a `success` field, the
   output says `success: True`;
 - effects, checked on `~bodies` (read with rospy all along):
-  * `rostopic pub` of a ParticleWrench / ParticleWrenchArray: every body the
-    message pushes with a non-zero wrench changed its momentum or angular
-    momentum, and, for every body, dp/dt and dL/dt measured between two
-    consecutive `~bodies` messages equal the force and torque of the wrenches
-    held (a model of them kept by this test across all documents: world or
-    body axes per frame_id, a later wrench for the same (body, particle)
+  * `rostopic pub` of a ParticleWrench / ParticleWrenchArray, or a
+    WrenchStamped on `~<body>/wrench`: every body the message pushes with a
+    non-zero wrench changed its momentum or angular momentum, and, for every
+    body, dp/dt and dL/dt measured between two consecutive `~bodies` messages
+    equal the force and torque of the wrenches held (a model of them kept by
+    this test across all documents: world or body axes per frame_id, a later
+    wrench for the same (body, particle) or on the same `~<body>/wrench`
     replaces an earlier one, a zero one removes it; torque = sum of r_i x f_i
-    plus couples, with r_i from `~particles`);
+    plus couples, with r_i from `~particles`, or 0 at the COM);
+  * `~apply_body_wrench`: a job until cleared (duration < 0) joins the model
+    with r_i its reference_point; a job with a duration is waited out (at
+    the real-time factor 1 of the documents) before the rates are checked;
   * `~clear_wrenches`: the model is emptied, so every dp/dt and dL/dt is 0;
+    `~clear_body_wrenches` empties it for the body named (all for "");
+  * `~spawn_body` / `~delete_body`: the body is in / out of the next
+    `~bodies` message (bodies are matched by name throughout);
   * `~reset`: every body's p, L and kinetic energy equal those published at
     start (invariants of the torque-free motion), stamps still increase;
   * `~set_paused true`: no `~bodies` message for 1 s; `~step N`: exactly one
@@ -453,12 +460,12 @@ class ReadmeExamples(unittest.TestCase):
         """(dp/dt, dL/dt) of one body from the wrenches held in the model."""
         a = rot(state.pose.orientation)
         force, torque = (0.0, 0.0, 0.0), (0.0, 0.0, 0.0)
-        for (body, particle), (in_body_axes, f, t) in self.held.items():
+        for (body, _), (in_body_axes, f, t, offset) in self.held.items():
             if body != state.name:
                 continue
             if in_body_axes:
                 f, t = mul(a, f), mul(a, t)
-            r = mul(a, self.offsets[body][particle])
+            r = mul(a, offset)
             force = add(force, f)
             torque = add(torque, add(cross(r, f), t))
         return force, torque
@@ -471,7 +478,11 @@ class ReadmeExamples(unittest.TestCase):
         for m1, m2 in zip(msgs, msgs[1:]):
             dt = (m2.header.stamp - m1.header.stamp).to_sec()
             self.assertGreater(dt, 0.0, '%s: ~bodies stamps not increasing' % where)
-            for b1, b2 in zip(m1.bodies, m2.bodies):
+            later = {b.name: b for b in m2.bodies}
+            for b1 in m1.bodies:
+                b2 = later.get(b1.name)
+                if b2 is None:
+                    continue   # deleted in between
                 f1, t1 = self.predicted(b1)
                 f2, t2 = self.predicted(b2)
                 f, t = scale(0.5, add(f1, f2)), scale(0.5, add(t1, t2))
@@ -493,35 +504,45 @@ class ReadmeExamples(unittest.TestCase):
         self.assertGreaterEqual(len(pos), 3, '%s: expected topic, type and message' % where)
         topic, msg_type, text = pos[0], pos[1], ' '.join(pos[2:])
         data = yaml.safe_load(text)
+        names = [b.name for b in before.bodies]
+        if topic.endswith('/wrench') and msg_type.endswith('WrenchStamped'):
+            body = topic.rstrip('/').split('/')[-2]
+            self.assertIn(body, names, '%s: unknown body %r in the example' % (where, body))
+            return self.hold(where, body, 'com', data, (0.0, 0.0, 0.0))
         if topic.endswith('/particle_wrench') and msg_type.endswith('ParticleWrench'):
             entries = [data]
         elif topic.endswith('/particle_wrenches') and msg_type.endswith('ParticleWrenchArray'):
             entries = data.get('wrenches', [])
         else:
             return None   # not a push: no model to update
-        names = [b.name for b in before.bodies]
         pushed = set()
         for e in entries:
-            header = e.get('header') or {}
-            stamp = header.get('stamp') or {}
-            if isinstance(stamp, dict) and (stamp.get('secs') or stamp.get('nsecs')):
-                self.skipTest('%s: a stamped wrench; the model handles zero stamps only' % where)
-            frame = str(header.get('frame_id', '') or '').lstrip('/')
             body = e.get('body')
             particle = int(e.get('particle', 0))
             self.assertIn(body, names, '%s: unknown body %r in the example' % (where, body))
             self.assertLess(particle, len(self.offsets[body]),
                             '%s: particle %d out of range for %s' % (where, particle, body))
-            self.assertIn(frame, ('', 'world', body),
-                          '%s: frame_id %r: neither world nor the body' % (where, frame))
-            wrench = e.get('wrench') or {}
-            f, t = get3(wrench, 'force'), get3(wrench, 'torque')
-            if norm(f) == 0.0 and norm(t) == 0.0:
-                self.held.pop((body, particle), None)
-            else:
-                self.held[(body, particle)] = (frame == body, f, t)
-                pushed.add(body)
+            pushed |= self.hold(where, body, particle, e, self.offsets[body][particle])
         return pushed
+
+    def hold(self, where, body, key, message, offset):
+        """Holds the wrench of a ParticleWrench entry or a WrenchStamped in the
+        model under (body, key), force at `offset` (body axes); {body} if it
+        pushes."""
+        header = message.get('header') or {}
+        stamp = header.get('stamp') or {}
+        if isinstance(stamp, dict) and (stamp.get('secs') or stamp.get('nsecs')):
+            self.skipTest('%s: a stamped wrench; the model handles zero stamps only' % where)
+        frame = str(header.get('frame_id', '') or '').lstrip('/')
+        self.assertIn(frame, ('', 'world', body),
+                      '%s: frame_id %r: neither world nor the body' % (where, frame))
+        wrench = message.get('wrench') or {}
+        f, t = get3(wrench, 'force'), get3(wrench, 'torque')
+        if norm(f) == 0.0 and norm(t) == 0.0:
+            self.held.pop((body, key), None)
+            return set()
+        self.held[(body, key)] = (frame == body, f, t, offset)
+        return {body}
 
     # -- the tests --------------------------------------------------------------
 
@@ -613,6 +634,7 @@ class ReadmeExamples(unittest.TestCase):
         self.offsets = self.reference_offsets()
         initial = self.last()
         self.held = {}
+        self.jobs = 0
         paused = False
         last_before_pause = None
 
@@ -653,6 +675,23 @@ class ReadmeExamples(unittest.TestCase):
                 name = service.rstrip('/').split('/')[-1]
                 if name == 'clear_wrenches':
                     self.held = {}
+                elif name == 'clear_body_wrenches':
+                    body = request['body']
+                    self.held = {k: v for k, v in self.held.items() if body and k[0] != body}
+                elif name == 'apply_body_wrench':
+                    self.apply_job(where, request, paused)
+                elif name == 'spawn_body':
+                    spawned = yaml.safe_load(request['body_yaml'])['name']
+                    msgs = self.wait_new(self.count(), 1, 5.0, where)
+                    self.assertIn(spawned, [b.name for b in msgs[-1].bodies],
+                                  '%s: %s not in ~bodies after the spawn' % (where, spawned))
+                elif name == 'delete_body':
+                    gone = request['body']
+                    self.held = {k: v for k, v in self.held.items() if k[0] != gone}
+                    time.sleep(0.1)   # a message already on its way may still have it
+                    msgs = self.wait_new(self.count(), 1, 5.0, where)
+                    self.assertNotIn(gone, [b.name for b in msgs[-1].bodies],
+                                     '%s: %s still in ~bodies after the delete' % (where, gone))
                 elif name == 'reset':
                     self.held = {}
                     self.check_reset(where, initial, before)
@@ -696,6 +735,23 @@ class ReadmeExamples(unittest.TestCase):
         self.assertEqual(self.node_pid(), pid, 'the node restarted during the documented '
                          'examples (it crashed and was respawned)')
 
+    def apply_job(self, where, request, paused):
+        """A job until cleared joins the model; one with a duration is waited out."""
+        body = request['body']
+        duration = request.get('duration') or {}
+        seconds = float(duration.get('secs', 0)) + 1e-9 * float(duration.get('nsecs', 0))
+        frame = str(request.get('reference_frame', '') or '').lstrip('/')
+        point = request.get('reference_point') or {}
+        offset = tuple(float(point.get(k, 0.0)) for k in ('x', 'y', 'z'))
+        if seconds < 0.0:
+            self.jobs += 1
+            self.hold(where, body, ('job', self.jobs),
+                      {'header': {'frame_id': frame}, 'wrench': request.get('wrench') or {}}, offset)
+        else:
+            self.assertFalse(paused, '%s: a job with a duration while paused is not modelled'
+                             % where)
+            time.sleep(seconds + 0.3)
+
     def check_dynparam_set(self, where, args):
         self.assertEqual(len(args), 3, '%s: expected `dynparam set <node> <key> <value>`' % where)
         node, key, value = args
@@ -708,7 +764,11 @@ class ReadmeExamples(unittest.TestCase):
         after = self.wait_new(self.count(), 1, 5.0, where)[-1]
         self.assertGreater(after.header.stamp, before.header.stamp,
                            '%s: stamps went back after reset' % where)
-        for b0, b1 in zip(initial.bodies, after.bodies):
+        now = {b.name: b for b in after.bodies}
+        for b0 in initial.bodies:
+            b1 = now.get(b0.name)
+            if b1 is None:
+                continue   # deleted
             for name, x0, x1 in (('p', vec(b0.linear_momentum), vec(b1.linear_momentum)),
                                  ('L', vec(b0.angular_momentum), vec(b1.angular_momentum))):
                 self.assertLessEqual(norm(sub(x1, x0)), 1e-6 * norm(x0) + 1e-9,
