@@ -58,8 +58,8 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
     throw std::invalid_argument("one initial state and one set of properties per body is required");
   }
   for (std::size_t i = 0; i < models_.size(); ++i) {
-    PrepareBody(i);
     CheckBody(i);
+    PrepareBody(i);
     body_index_.emplace(models_[i].name(), i);
   }
   has_gravity_ = !options_.gravity.isZero(0.0);
@@ -108,8 +108,8 @@ void World::AddBody(BodyModel model, const BodyState& initial_state,
   one_step_momentum_sq_.push_back(0.0);
   const std::size_t body = models_.size() - 1;
   try {
-    PrepareBody(body);
     CheckBody(body);
+    PrepareBody(body);
   } catch (...) {
     RemoveLast();
     throw;

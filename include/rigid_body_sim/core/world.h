@@ -143,8 +143,8 @@ class World {
   // is frozen).
   void FinishStep(std::size_t body, const BodyState& before);
   void Freeze(std::size_t body, BodyFault fault);
-  // The constructor's checks of body i's name (against bodies 0 … i−1),
-  // properties and initial state; throws std::invalid_argument.
+  // The constructor's checks of body i: a name no other body has, its
+  // properties and its initial state; throws std::invalid_argument.
   void CheckBody(std::size_t i) const;
   // Body i's per-body constants: torque projector, one-step bound.
   void PrepareBody(std::size_t i);
