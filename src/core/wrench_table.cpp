@@ -10,6 +10,19 @@ namespace rigid_body_sim::core {
 WrenchTable::WrenchTable(std::vector<std::size_t> particle_counts)
     : particle_counts_(std::move(particle_counts)), jobs_per_body_(particle_counts_.size(), 0) {}
 
+WrenchTable::Entry WrenchTable::MakeEntry(Entry::Kind kind, std::size_t body, WrenchAxes axes,
+                                          const Eigen::Vector3d& force,
+                                          const Eigen::Vector3d& couple, double start_s) {
+  Entry entry;
+  entry.kind = kind;
+  entry.axes = axes;
+  entry.body = body;
+  entry.force = force;
+  entry.couple = couple;
+  entry.start_s = start_s;
+  return entry;
+}
+
 void WrenchTable::HoldEntry(const Entry& entry) {
   assert(entry.body < particle_counts_.size());
   assert(entry.force.allFinite() && entry.couple.allFinite() && std::isfinite(entry.start_s));
@@ -24,26 +37,15 @@ void WrenchTable::HoldEntry(const Entry& entry) {
 
 void WrenchTable::Hold(const ParticleWrench& wrench) {
   assert(wrench.body < particle_counts_.size() && wrench.particle < particle_counts_[wrench.body]);
-  Entry entry;
-  entry.kind = Entry::Kind::kParticle;
-  entry.axes = wrench.axes;
-  entry.body = wrench.body;
+  Entry entry = MakeEntry(Entry::Kind::kParticle, wrench.body, wrench.axes, wrench.force,
+                          wrench.couple, wrench.start_s);
   entry.particle = wrench.particle;
-  entry.force = wrench.force;
-  entry.couple = wrench.couple;
-  entry.start_s = wrench.start_s;
   HoldEntry(entry);
 }
 
 void WrenchTable::HoldBodyWrench(const BodyWrench& wrench) {
-  Entry entry;
-  entry.kind = Entry::Kind::kBody;
-  entry.axes = wrench.axes;
-  entry.body = wrench.body;
-  entry.force = wrench.force;
-  entry.couple = wrench.couple;
-  entry.start_s = wrench.start_s;
-  HoldEntry(entry);
+  HoldEntry(MakeEntry(Entry::Kind::kBody, wrench.body, wrench.axes, wrench.force, wrench.couple,
+                      wrench.start_s));
 }
 
 JobRefusal WrenchTable::AddJob(const WrenchJob& job, double t_s) {
@@ -54,14 +56,8 @@ JobRefusal WrenchTable::AddJob(const WrenchJob& job, double t_s) {
   if (jobs_per_body_[job.body] >= kMaxJobsPerBody) return JobRefusal::kBodyFull;
   if (job_count_ >= kMaxJobs) return JobRefusal::kTableFull;
   reduced_ = false;
-  Entry entry;
-  entry.kind = Entry::Kind::kJob;
-  entry.axes = job.axes;
-  entry.body = job.body;
-  entry.force = job.force;
-  entry.couple = job.couple;
+  Entry entry = MakeEntry(Entry::Kind::kJob, job.body, job.axes, job.force, job.couple, job.start_s);
   entry.point_m = job.point_m;
-  entry.start_s = job.start_s;
   entry.end_s = job.end_s;
   entries_.push_back(entry);
   ++jobs_per_body_[job.body];

@@ -121,6 +121,9 @@ class WrenchTable {
   static std::uint64_t Key(const Entry& entry) {
     return Key(entry.body, entry.kind == Entry::Kind::kParticle ? entry.particle : kBodySlot);
   }
+  static Entry MakeEntry(Entry::Kind kind, std::size_t body, WrenchAxes axes,
+                         const Eigen::Vector3d& force, const Eigen::Vector3d& couple,
+                         double start_s);
   void HoldEntry(const Entry& entry);
   // Swap-removes entries_[i], keeping index_ and the job counts.
   void Erase(std::size_t i);
