@@ -20,7 +20,8 @@ set(_rbs_node_gtests
   reconfigure
   outputs
   body_wrenches
-  bodies_at_run_time)
+  bodies_at_run_time
+  properties)
 
 foreach(_t ${_rbs_node_gtests})
   add_rostest_gtest(${_t}_test test/ros/${_t}.test test/ros/${_t}_test.cpp)
