@@ -1,8 +1,5 @@
 #include "rigid_body_sim/ros/body_topics.h"
 
-#include <pthread.h>
-#include <sched.h>
-
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TwistStamped.h>
 #include <nav_msgs/Odometry.h>
@@ -74,10 +71,6 @@ void BodyTopics::Push(Task task) {
 }
 
 void BodyTopics::Work() {
-  // Only on CPU time nothing else wants: each advertisement costs the node
-  // about a millisecond of XML-RPC, which must not delay a step.
-  sched_param idle{};
-  pthread_setschedparam(pthread_self(), SCHED_IDLE, &idle);
   for (;;) {
     Task task;
     {
