@@ -54,6 +54,8 @@ from node_harness import NODE_NAME, NS, REPO, Processes, add_workspace_argument,
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--bodies", type=int, default=10000, help="number of generated boxes (default 10000)")
+    parser.add_argument("--publish-rate", type=float, default=100.0,
+                        help="the scene's publish_rate [Hz] (default 100)")
     parser.add_argument("--trials", type=int, default=3, help="trials per per_body_topics value (default 3)")
     add_workspace_argument(parser)
     parser.add_argument("--port", type=int, default=11397, help="port of the private ROS master")
@@ -98,7 +100,7 @@ def make_scene(n_bodies, per_body_topics):
                        "resolution": 2, "position": [0.5 * x, 0.5 * y, 0.5 * z],
                        "linear_velocity": [0.01, 0.0, 0.0],
                        "angular_velocity": [rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(1, 3)]})
-    return {"rate": 1000.0, "publish_rate": 100.0, "real_time_factor": 1.0, "gravity": [0.0, 0.0, 0.0],
+    return {"rate": 1000.0, "publish_rate": ARGS.publish_rate, "real_time_factor": 1.0, "gravity": [0.0, 0.0, 0.0],
             "status_period": 0.0, "per_body_topics": per_body_topics, "bodies": bodies}
 
 
@@ -319,14 +321,15 @@ def write_report(rows, elapsed, command):
                  ARGS.bench_cpu, elapsed,
                  ", ".join("%.2f" % r["loadavg1"] for r in rows if "loadavg1" in r) or "n/a"))
     md.append("")
-    md.append("Scene: %d boxes of 8 particles (`resolution: 2`), all moving, `rate` 1000, `publish_rate` 100, "
+    md.append("Scene: %d boxes of 8 particles (`resolution: 2`), all moving, `rate` 1000, `publish_rate` %g, "
               "`real_time_factor` 1, `status_period` 0, set on the parameter server before the node starts. "
               "The script subscribes to `/rigid_body_sim/bodies` and `/tf` (raw bytes) before it starts the "
               "node and stays subscribed, as a user would: each message is about %.1f MB (~bodies) and %.1f MB "
-              "(/tf) at this size, 100 of each per second, which costs the node CPU. Times are from "
+              "(/tf) at this size, %g of each per second, which costs the node CPU. Times are from "
               "`time.monotonic()` just before the node's `Popen`. Each figure is the median of %d trial(s) per "
               "row; every trial is a row of `startup.csv`."
-              % (n, median(rows, "bodies_msg_mb"), median(rows, "tf_msg_mb"), ARGS.trials))
+              % (n, ARGS.publish_rate, median(rows, "bodies_msg_mb"), median(rows, "tf_msg_mb"),
+                 ARGS.publish_rate, ARGS.trials))
     md.append("")
     header = ["`per_body_topics`", "trials", "Run() entered s", "first ~bodies s", "first /tf s",
               "RSS at first ~bodies MB", "all per-body topics up s", "bodies with topics", "topics/s",
