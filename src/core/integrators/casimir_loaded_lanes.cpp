@@ -98,11 +98,11 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
     const double a1 = b.axis1[l], a3 = b.axis3[l], casimir = b.casimir[l];
 
     // p += w F, L += w τ at the current pose (A = R_WP).
-    const auto kick = [&](double w) {
+    const auto kick = [&](double w) __attribute__((always_inline)) {
       double a[9];
       lanes::RotationMatrix(q, a);
       // M = C_P Aᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
-      const auto m = [&](int i, int j) { return c[3 * i] * a[3 * j] + c[3 * i + 1] * a[3 * j + 1] + c[3 * i + 2] * a[3 * j + 2]; };
+      const auto m = [&](int i, int j) __attribute__((always_inline)) { return c[3 * i] * a[3 * j] + c[3 * i + 1] * a[3 * j + 1] + c[3 * i + 2] * a[3 * j + 2]; };
       const double moment_torque[3] = {m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1)};
       for (int k = 0; k < 3; ++k) {
         double force = fw[k], torque = tw[k] + moment_torque[k];
