@@ -24,6 +24,10 @@ rbs_catkin_make() {
     return 1
   fi
   mkdir -p "$ws/src"
+  # A workspace kept from another checkout builds this one: the link follows.
+  if [ -L "$ws/src/rigid_body_sim" ] && [ "$(readlink "$ws/src/rigid_body_sim")" != "$repo" ]; then
+    ln -sfn "$repo" "$ws/src/rigid_body_sim"
+  fi
   [ -e "$ws/src/rigid_body_sim" ] || ln -s "$repo" "$ws/src/rigid_body_sim"
   cd "$ws" || return 1
   catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@"
