@@ -1,6 +1,7 @@
 #!/bin/bash
-# Renders the default scene in rviz on a virtual display (Xvfb) and saves a
-# screenshot to doc/rviz_default_scene.png:
+# Renders the default scene in rviz on a virtual display (Xvfb), the box
+# pushed so that its applied wrench shows, and saves a screenshot to
+# doc/rviz_default_scene.png:
 #   bash scripts/rviz_screenshot.sh [seconds to let the scene run, default 6]
 # Runs on its own master port (RBS_SCREENSHOT_PORT, default 11399) so that it
 # leaves any running simulation alone.
@@ -30,6 +31,9 @@ sleep 2
 roslaunch -p "$port" rigid_body_sim rigid_body_sim.launch rviz:=true >/tmp/rviz_screenshot_launch.log 2>&1 &
 pids+=($!)
 sleep "$settle_s"
+# A held push on the box, so that the applied-wrench display has arrows to draw.
+rosservice call /rigid_body_sim/apply_body_wrench \
+  "{body: box, reference_frame: box, reference_point: {x: 0.15, y: 0.1, z: 0.05}, wrench: {force: {z: 0.2}}, duration: {secs: -1, nsecs: 0}}" >/dev/null
 sleep 4   # rviz itself takes a few seconds to come up under software rendering
 
 mkdir -p "$(dirname "$out")"
