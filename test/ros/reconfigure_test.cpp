@@ -254,10 +254,11 @@ TEST(Reconfigure, StampsStayOnTheLatticeWhilePublishRateAndPacingChange) {
   ASSERT_GT(gaps_ns.size(), 20u);
   EXPECT_EQ(gaps_ns.front(), 10 * kDt_ns);
   EXPECT_EQ(gaps_ns.back(), 4 * kDt_ns);
+  // Publish cycles fall on step counts that are multiples of 10, then of 4:
+  // every gap is a positive multiple of 2 steps (a message the subscriber's
+  // queue dropped on a loaded machine leaves a gap of several periods).
   for (const std::int64_t gap : gaps_ns) {
-    EXPECT_TRUE(gap == 10 * kDt_ns || gap == 4 * kDt_ns || gap == 2 * kDt_ns || gap == 6 * kDt_ns ||
-                gap == 8 * kDt_ns)
-        << gap << " ns";
+    EXPECT_TRUE(gap > 0 && gap % (2 * kDt_ns) == 0) << gap << " ns";
   }
 }
 
