@@ -18,6 +18,8 @@ add_library(rigid_body_sim_ros
   src/ros/state_publisher.cpp
   src/ros/node_diagnostics.cpp
   src/ros/runtime_config.cpp
+  src/ros/lockstep_gate.cpp
+  src/ros/lockstep_publishers.cpp
   src/ros/simulation_node.cpp)
 # The ROS headers come from include_directories() above here and from
 # catkin_package() for dependent packages: no absolute path in the interface.

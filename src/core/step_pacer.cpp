@@ -27,8 +27,8 @@ void StepPacer::SetRealTimeFactor(double real_time_factor, Clock::time_point now
   Restart(now);
 }
 
-std::uint64_t StepPacer::TakeDueSteps(Clock::time_point now) {
-  if (!paced_) return max_batch_;
+std::uint64_t StepPacer::TakeDueSteps(Clock::time_point now, std::uint64_t at_most) {
+  if (!paced_) return std::min(max_batch_, at_most);
   if (now < next_due()) return 0;
   // Step k (counted from the anchor) is due at anchor + k·period.
   const std::uint64_t due_total = static_cast<std::uint64_t>((now - anchor_) / period_) + 1;
@@ -41,6 +41,7 @@ std::uint64_t StepPacer::TakeDueSteps(Clock::time_point now) {
     anchor_ = now - period_ * static_cast<Clock::rep>(max_batch_ - 1);
     taken_since_anchor_ = 0;
   }
+  due = std::min(due, at_most);
   taken_since_anchor_ += due;
   return due;
 }

@@ -55,6 +55,18 @@ BodyState ToBodyState(const core::BodyModel& model, const core::BodyState& state
   return msg;
 }
 
+BodyStateArray ToBodyStateArray(const core::World& world, const ros::Time& stamp,
+                                const std::string& world_frame) {
+  BodyStateArray bodies;
+  bodies.header.stamp = stamp;
+  bodies.header.frame_id = world_frame;
+  bodies.bodies.reserve(world.size());
+  for (std::size_t body = 0; body < world.size(); ++body) {
+    bodies.bodies.push_back(ToBodyState(world.model(body), world.state(body)));
+  }
+  return bodies;
+}
+
 double SecondsSince(const ros::Time& start, const ros::Time& stamp) {
   const std::int64_t since_start_ns =
       static_cast<std::int64_t>(stamp.toNSec()) - static_cast<std::int64_t>(start.toNSec());

@@ -1,5 +1,6 @@
 #include "rigid_body_sim/ros/node_diagnostics.h"
 
+#include "rigid_body_sim/core/state_hash.h"
 #include "rigid_body_sim/ros/log_thread.h"
 
 #include <optional>
@@ -23,12 +24,14 @@ double Microseconds(std::chrono::steady_clock::duration duration) {
 
 NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& private_nh, const NodeSettings& settings,
                                  const core::World& world, const core::StepPacer& pacer,
-                                 const WrenchIntake& intake, const BodyTopics& body_topics)
+                                 const WrenchIntake& intake, const BodyTopics& body_topics,
+                                 const LockstepGate* lockstep)
     : settings_(settings),
       world_(world),
       pacer_(pacer),
       intake_(intake),
       body_topics_(body_topics),
+      lockstep_(lockstep),
       conservation_(world),
       sweep_per_step_(world.size() / kStepsPerConservationSweep + 1),
       updater_(ros::NodeHandle(), private_nh),
@@ -60,6 +63,11 @@ void NodeDiagnostics::ReportNewFaults(const ros::Time& stamp) {
                         "~reset or ~set_body_state brings it back",
                         world_.model(body).name().c_str(), core::ToString(fault), stamp.toSec()));
   }
+}
+
+void NodeDiagnostics::RecordPublishedState(std::uint64_t state_hash, const ros::Time& stamp) {
+  state_hash_ = core::HashHex(state_hash);
+  state_hash_stamp_ = stamp;
 }
 
 void NodeDiagnostics::OnBodyStateSet(std::size_t body) {
@@ -95,6 +103,10 @@ void NodeDiagnostics::Report(Clock::time_point now, const ros::Time& stamp, bool
   window_ = Window{now, world_.time()};
   paused_ = paused;
   stamp_ = stamp;
+  if (lockstep_ != nullptr) {
+    lockstep_timed_out_ = lockstep_->timeouts() > lockstep_timeouts_at_last_report_;
+    lockstep_timeouts_at_last_report_ = lockstep_->timeouts();
+  }
 
   if (settings_.status_period_s > 0.0 && now >= next_status_) {
     const std::string substeps =
@@ -124,6 +136,9 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
                        "~set_body_state brings them back");
   } else if (paused_) {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "paused");
+  } else if (lockstep_timed_out_) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
+                   "lockstep: a controller did not answer within ~lockstep_timeout");
   } else if (slow) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                    "slower than the requested real-time factor");
@@ -151,6 +166,15 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
   for (std::size_t reason = 1; reason < kWrenchMsgRejectionCount; ++reason) {
     const auto rejection = static_cast<WrenchMsgRejection>(reason);
     status.add(std::string("rejected_") + ToString(rejection), intake_.rejected(rejection));
+  }
+  if (lockstep_ != nullptr) {
+    status.add("lockstep_late_answers", lockstep_->late_answers());
+    status.add("lockstep_future_stamp", lockstep_->future_stamps());
+    status.add("lockstep_timeouts", lockstep_->timeouts());
+  }
+  if (!state_hash_.empty()) {
+    status.add("state_hash", state_hash_);
+    status.addf("state_hash_stamp", "%u.%09u", state_hash_stamp_.sec, state_hash_stamp_.nsec);
   }
   status.add("dropped_couples", world_.dropped_couple_count());
   status.add("frozen_bodies", world_.frozen_count());

@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <set>
 
+#include <ros/names.h>
+
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/ros/imu_noise_params.h"
@@ -278,9 +280,51 @@ class ParamReader {
     return Get(key, &value) ? ReadFiniteVector<3>(value, "~" + key) : fallback;
   }
 
+  std::vector<std::string> StringList(const std::string& key) const {
+    XmlRpcValue value;
+    if (!Get(key, &value)) return {};
+    if (value.getType() != XmlRpcValue::TypeArray) {
+      throw SceneError("~" + key + " must be a list of strings, got " + Describe(value));
+    }
+    std::vector<std::string> strings;
+    for (int i = 0; i < value.size(); ++i) {
+      if (value[i].getType() != XmlRpcValue::TypeString || static_cast<std::string>(value[i]).empty()) {
+        throw SceneError("~" + key + "[" + std::to_string(i) + "] must be a non-empty string, got " +
+                         Describe(value[i]));
+      }
+      strings.push_back(value[i]);
+    }
+    return strings;
+  }
+
  private:
   const ros::NodeHandle& nh_;
 };
+
+LockstepSettings ReadLockstep(const ParamReader& params) {
+  LockstepSettings lockstep;
+  lockstep.enabled = params.Bool("lockstep", lockstep.enabled);
+  for (const std::string& name : params.StringList("lockstep_publishers")) {
+    std::string error;
+    if (!ros::names::validate(name, error)) {
+      throw SceneError("~lockstep_publishers: '" + name + "' is not a node name: " + error);
+    }
+    lockstep.publishers.push_back(ros::names::resolve(name));
+  }
+  if (lockstep.enabled && lockstep.publishers.empty()) {
+    throw SceneError("~lockstep_publishers must list the controllers' node names when ~lockstep is true");
+  }
+  lockstep.timeout_s = params.Number("lockstep_timeout", lockstep.timeout_s);
+  if (lockstep.timeout_s <= 0.0) {
+    throw SceneError("~lockstep_timeout must be > 0, got " + FormatNumber(lockstep.timeout_s));
+  }
+  lockstep.startup_timeout_s = params.Number("lockstep_startup_timeout", lockstep.startup_timeout_s);
+  if (lockstep.startup_timeout_s < 0.0) {
+    throw SceneError("~lockstep_startup_timeout must be >= 0, got " +
+                     FormatNumber(lockstep.startup_timeout_s));
+  }
+  return lockstep;
+}
 
 NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   const ParamReader params(private_nh);
@@ -289,8 +333,8 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   if (settings.world_frame.empty()) throw SceneError("~world_frame must not be empty");
   settings.tf_prefix = params.String("tf_prefix", settings.tf_prefix);
   settings.rate_hz = params.Number("rate", settings.rate_hz);
-  if (settings.rate_hz <= 0.0) {
-    throw SceneError("~rate must be > 0, got " + FormatNumber(settings.rate_hz));
+  if (settings.rate_hz <= 0.0 || settings.rate_hz > 1e9) {
+    throw SceneError("~rate must be > 0 and at most 1e9, got " + FormatNumber(settings.rate_hz));
   }
   settings.publish_rate_hz = params.Number("publish_rate", settings.publish_rate_hz);
   if (settings.publish_rate_hz <= 0.0) {
@@ -329,6 +373,7 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
                      FormatNumber(kMaxSubstepsLimit) + ", got " + FormatNumber(max_substeps));
   }
   settings.max_substeps = static_cast<std::uint32_t>(max_substeps);
+  settings.lockstep = ReadLockstep(params);
   return settings;
 }
 

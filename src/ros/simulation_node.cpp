@@ -2,10 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include <ros/callback_queue.h>
 
+#include "rigid_body_sim/core/state_hash.h"
 #include "rigid_body_sim/ros/body_state_request.h"
+#include "rigid_body_sim/ros/conversions.h"
+#include "rigid_body_sim/ros/lockstep_publishers.h"
 #include "rigid_body_sim/ros/log_thread.h"
 #include "rigid_body_sim/ros/wrench_job_request.h"
 #include "rigid_body_sim/ros/yaml_value.h"
@@ -17,6 +21,8 @@ namespace {
 constexpr double kMaxCatchUp_s = 0.1;
 // How long a paused loop waits for callbacks before checking again.
 constexpr std::chrono::milliseconds kPausedWait(50);
+// How often lockstep's start asks the master whether the controllers are there.
+constexpr double kLockstepPollPeriod_s = 0.05;
 // Queues sized for bursts of per-particle messages between two steps.
 constexpr std::uint32_t kWrenchQueueSize = 1000;
 constexpr std::uint32_t kWrenchArrayQueueSize = 100;
@@ -33,6 +39,23 @@ core::WorldOptions MakeWorldOptions(const NodeSettings& settings) {
 
 std::uint64_t PublishEverySteps(const NodeSettings& settings) {
   return std::max<std::uint64_t>(1, std::llround(settings.rate_hz / settings.publish_rate_hz));
+}
+
+std::optional<LockstepGate> MakeLockstepGate(const LockstepSettings& lockstep) {
+  if (!lockstep.enabled) return std::nullopt;
+  return LockstepGate(lockstep.publishers, lockstep.timeout_s);
+}
+
+std::string Join(const std::vector<std::string>& names) {
+  std::string joined;
+  for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
+  return joined;
+}
+
+ros::Time FromNanoseconds(std::int64_t ns) {
+  ros::Time stamp;
+  stamp.fromNSec(static_cast<std::uint64_t>(ns));
+  return stamp;
 }
 
 void WarnIfPublishRateIsRounded(const NodeSettings& settings, std::uint64_t publish_every_steps) {
@@ -58,7 +81,10 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
                  [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
                    OnBodyWrench(body, msg);
                  }),
-      diagnostics_(private_nh, settings_, world_, pacer_, intake_, publisher_.body_topics()),
+      lockstep_(MakeLockstepGate(settings_.lockstep)),
+      diagnostics_(private_nh, settings_, world_, pacer_, intake_, publisher_.body_topics(),
+                   lockstep_ ? &*lockstep_ : nullptr),
+      lattice_(settings_.rate_hz),
       private_nh_(private_nh),
       runtime_config_(private_nh_, settings_,
                       [this](const NodeSettings& next) { ApplyRuntimeSettings(next); }) {
@@ -67,10 +93,16 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
                                                &SimulationNode::OnParticleWrench, this, low_latency));
   subscribers_.push_back(private_nh_.subscribe("particle_wrenches", kWrenchArrayQueueSize,
                                                &SimulationNode::OnParticleWrenches, this, low_latency));
+  if (lockstep_) {
+    subscribers_.push_back(private_nh_.subscribe("lockstep_wrenches", kWrenchArrayQueueSize,
+                                                 &SimulationNode::OnLockstepAnswer, this, low_latency));
+  }
 
   services_.push_back(private_nh_.advertiseService("reset", &SimulationNode::OnReset, this));
   services_.push_back(private_nh_.advertiseService("set_paused", &SimulationNode::OnSetPaused, this));
   services_.push_back(private_nh_.advertiseService("step", &SimulationNode::OnStep, this));
+  services_.push_back(
+      private_nh_.advertiseService("step_with_wrenches", &SimulationNode::OnStepWithWrenches, this));
   services_.push_back(
       private_nh_.advertiseService("set_body_state", &SimulationNode::OnSetBodyState, this));
   services_.push_back(
@@ -86,23 +118,31 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
 }
 
 void SimulationNode::Run() {
-  start_stamp_ = ros::Time::now();
+  if (lockstep_) WaitForLockstepPublishers();
+  StartClock();
   Clock::time_point next_report = Clock::now() + NodeDiagnostics::kReportPeriod;
   pacer_.Restart(Clock::now());
   diagnostics_.Start(Clock::now());
   ROS_INFO("%s: %zu bodies, integrator %s, dt %g s, publishing every %llu steps, "
-           "real-time factor %g, start time %.3f s",
+           "real-time factor %g, start time %.9f s%s",
            ros::this_node::getName().c_str(), world_.size(), world_.integrator().name(),
            world_.options().dt_s, static_cast<unsigned long long>(publish_every_steps_),
-           settings_.real_time_factor, start_stamp_.toSec());
+           settings_.real_time_factor, start_stamp_.toSec(),
+           lockstep_ ? (", lockstep with " + Join(lockstep_->publishers())).c_str() : "");
+  if (lockstep_) PublishCycle();  // t_0, for the controllers' first answer
 
   ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
   while (ros::ok()) {
     Clock::time_point now = Clock::now();
-    if (!paused_) {
-      for (std::uint64_t due = pacer_.TakeDueSteps(now); due > 0; --due) {
-        StepOnce((world_.step_count() + 1) % publish_every_steps_ == 0);
-        if (AtPublishBoundary()) publisher_.Publish(world_, Stamp());
+    if (!paused_ && lockstep_ && lockstep_->open()) PassLockstepGate(now);
+    const bool gated = lockstep_ && lockstep_->open();
+    if (!paused_ && !gated) {
+      // Under lockstep a batch ends at the next cycle, where the gate opens.
+      const std::uint64_t at_most = lockstep_ ? StepsToNextCycle()
+                                                  : std::numeric_limits<std::uint64_t>::max();
+      for (std::uint64_t due = pacer_.TakeDueSteps(now, at_most); due > 0; --due) {
+        StepOnce(IsPublishCycle(world_.step_count() + 1));
+        if (IsPublishCycle(world_.step_count())) PublishCycle();
       }
     }
     now = Clock::now();
@@ -111,12 +151,88 @@ void SimulationNode::Run() {
       next_report += NodeDiagnostics::kReportPeriod;
       if (next_report <= now) next_report = now + NodeDiagnostics::kReportPeriod;
     }
-    const Clock::time_point wake = paused_           ? now + kPausedWait
-                                   : pacer_.paced() ? std::min(pacer_.next_due(), next_report)
-                                                    : now;
+    const bool waits_for_answers = lockstep_ && lockstep_->open();
+    const Clock::time_point wake =
+        paused_             ? now + kPausedWait
+        : waits_for_answers ? std::min(lockstep_->deadline(), next_report)
+        : pacer_.paced()    ? std::min(pacer_.next_due(), next_report)
+                            : now;
     const double wait_s = std::max(0.0, std::chrono::duration<double>(wake - now).count());
     callbacks.callAvailable(ros::WallDuration(wait_s));
   }
+}
+
+void SimulationNode::StartClock() {
+  const auto now_ns = [] { return static_cast<std::int64_t>(ros::Time::now().toNSec()); };
+  first_index_ = lattice_.FirstIndexAtOrAfter(now_ns());
+  if (lockstep_) {
+    const auto every = static_cast<std::int64_t>(publish_every_steps_);
+    first_index_ = (first_index_ + every - 1) / every * every;
+    // Wait for that moment, at most two publish periods of wall time, in
+    // case the clock is a /clock that stands still.
+    const Clock::time_point give_up =
+        Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                           2.0 * static_cast<double>(every) / settings_.rate_hz));
+    while (ros::ok() && now_ns() < lattice_.StampNs(first_index_) && Clock::now() < give_up) {
+      ros::WallDuration(std::min(1e-3, 1.0 / settings_.rate_hz)).sleep();
+    }
+  }
+  start_stamp_ = Stamp();
+}
+
+void SimulationNode::WaitForLockstepPublishers() {
+  const std::string answer_topic = private_nh_.resolveName("lockstep_wrenches");
+  const std::string state_topic = private_nh_.resolveName("bodies");
+  const std::size_t listed = lockstep_->publishers().size();
+  const Clock::time_point give_up =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(settings_.lockstep.startup_timeout_s));
+  ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
+  std::vector<std::string> missing = lockstep_->publishers();
+  while (ros::ok()) {
+    // The master's account, and this node's own connections, which the first
+    // published state needs.
+    missing = PublishersNotConnected(lockstep_->publishers(), answer_topic, state_topic);
+    const bool connected = subscribers_.back().getNumPublishers() >= listed &&
+                           static_cast<std::size_t>(publisher_.bodies_subscribers()) >= listed;
+    if (missing.empty() && connected) return;
+    if (Clock::now() >= give_up) break;
+    callbacks.callAvailable(ros::WallDuration(kLockstepPollPeriod_s));
+  }
+  if (!ros::ok()) return;
+  lockstep_->CountStartupTimeout();
+  ROS_WARN("lockstep: after %g s (~lockstep_startup_timeout) %s not both publishing on %s and "
+           "subscribed to %s; starting anyway, each cycle waits at most ~lockstep_timeout %g s",
+           settings_.lockstep.startup_timeout_s, missing.empty() ? "some controllers are" : (Join(missing) + " is").c_str(),
+           answer_topic.c_str(), state_topic.c_str(), settings_.lockstep.timeout_s);
+}
+
+std::uint64_t SimulationNode::PublishCycle() {
+  const ros::Time stamp = Stamp();
+  publisher_.Publish(world_, stamp);
+  const std::uint64_t hash = core::StateHash(world_);
+  diagnostics_.RecordPublishedState(hash, stamp);
+  if (lockstep_) lockstep_->Open(stamp, Clock::now());
+  return hash;
+}
+
+void SimulationNode::PassLockstepGate(Clock::time_point now) {
+  if (!lockstep_->all_answered()) {
+    if (now < lockstep_->deadline()) return;
+    const std::vector<std::string> missing = lockstep_->Close(true);
+    if (lockstep_warnings_.Ready()) {
+      LogOffThread(LogLevel::kWarn,
+                   Format("lockstep: no answer stamped %.9f from %s within %g s (~lockstep_timeout); "
+                          "stepping on (%llu timeouts so far)",
+                          lockstep_->open_stamp().toSec(), Join(missing).c_str(),
+                          settings_.lockstep.timeout_s,
+                          static_cast<unsigned long long>(lockstep_->timeouts())));
+    }
+  } else {
+    lockstep_->Close(false);
+  }
+  // Time spent waiting is not a debt to catch up.
+  if (pacer_.paced() && now > pacer_.next_due()) pacer_.Restart(now);
 }
 
 void SimulationNode::StepOnce(bool publishes_after) {
@@ -128,14 +244,16 @@ void SimulationNode::StepOnce(bool publishes_after) {
 }
 
 ros::Time SimulationNode::Stamp() const {
-  // The world counts time from 0 in doubles of ~1e4 s (resolution ~1e-12 s);
-  // adding it to the start as a ros::Time keeps every stamp on t0 + n·dt to the
-  // nanosecond, which a double of ~1.8e9 s (resolution 2.4e-7 s) would not.
-  return start_stamp_ + ros::Duration(world_.time());
+  return FromNanoseconds(lattice_.StampNs(first_index_ + static_cast<std::int64_t>(world_.step_count())));
 }
 
-bool SimulationNode::AtPublishBoundary() const {
-  return world_.step_count() % publish_every_steps_ == 0;
+bool SimulationNode::IsPublishCycle(std::uint64_t steps) const {
+  return (static_cast<std::uint64_t>(first_index_) + steps) % publish_every_steps_ == 0;
+}
+
+std::uint64_t SimulationNode::StepsToNextCycle() const {
+  const std::uint64_t index = static_cast<std::uint64_t>(first_index_) + world_.step_count();
+  return publish_every_steps_ - index % publish_every_steps_;
 }
 
 void SimulationNode::Hold(const core::ParticleWrench& wrench) {
@@ -150,7 +268,33 @@ void SimulationNode::OnParticleWrench(const ParticleWrench::ConstPtr& msg) {
 
 void SimulationNode::OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg) {
   // All entries act from the same step, since no step runs while a callback does.
-  intake_.TakeArray(*msg, start_stamp_, world_.time(),
+  intake_.TakeArray(msg->wrenches, start_stamp_, world_.time(),
+                    [this](const core::ParticleWrench& wrench) { Hold(wrench); });
+}
+
+void SimulationNode::OnLockstepAnswer(const ros::MessageEvent<const StampedParticleWrenchArray>& event) {
+  const StampedParticleWrenchArray& msg = *event.getConstMessage();
+  const std::string& sender = event.getPublisherName();
+  switch (lockstep_->Sort(sender, msg.header.stamp)) {
+    case LockstepGate::Answer::kFutureStamp:
+      intake_.Reject("lockstep answer", WrenchMsgRejection::kLockstepFutureStamp,
+                     Format("stamp %.9f from %s is after the last published cycle; its %zu entries "
+                            "are not held",
+                            msg.header.stamp.toSec(), sender.c_str(), msg.wrenches.size()));
+      return;
+    case LockstepGate::Answer::kUnlisted:
+      if (lockstep_warnings_.Ready()) {
+        LogOffThread(LogLevel::kWarn,
+                     Format("lockstep: %s is not in ~lockstep_publishers (%s): its entries on "
+                            "~lockstep_wrenches are held, but it answers no cycle",
+                            sender.c_str(), Join(lockstep_->publishers()).c_str()));
+      }
+      break;
+    case LockstepGate::Answer::kThisCycle:
+    case LockstepGate::Answer::kLate:
+      break;
+  }
+  intake_.TakeArray(msg.wrenches, start_stamp_, world_.time(),
                     [this](const core::ParticleWrench& wrench) { Hold(wrench); });
 }
 
@@ -171,7 +315,10 @@ bool SimulationNode::OnReset(std_srvs::Empty::Request&, std_srvs::Empty::Respons
 
 bool SimulationNode::OnSetPaused(std_srvs::SetBool::Request& request,
                                  std_srvs::SetBool::Response& response) {
-  if (paused_ && !request.data) pacer_.Restart(Clock::now());  // no catch-up for the pause
+  if (paused_ && !request.data) {
+    pacer_.Restart(Clock::now());  // no catch-up for the pause
+    if (lockstep_ && lockstep_->open()) lockstep_->RestartTimeout(Clock::now());
+  }
   response.message = paused_ == request.data ? (paused_ ? "already paused" : "already running")
                                              : (request.data ? "paused" : "resumed");
   paused_ = request.data;
@@ -179,23 +326,51 @@ bool SimulationNode::OnSetPaused(std_srvs::SetBool::Request& request,
   return true;
 }
 
+std::optional<std::string> SimulationNode::StepRefusal(std::uint32_t steps) const {
+  if (!paused_) return std::string("works only while paused (call ~set_paused true first)");
+  if (steps == 0) return std::string("steps must be >= 1");
+  return std::nullopt;
+}
+
+std::uint64_t SimulationNode::StepWhilePaused(std::uint32_t steps) {
+  // The cycle lockstep waits at is left without its answers: they come late.
+  if (lockstep_ && lockstep_->open()) lockstep_->Close(false);
+  for (std::uint32_t i = 0; i < steps; ++i) StepOnce(i + 1 == steps);
+  return PublishCycle();
+}
+
 bool SimulationNode::OnStep(Step::Request& request, Step::Response& response) {
   response.sim_time = Stamp().toSec();
-  if (!paused_) {
-    response.success = false;
-    response.message = "~step works only while paused (call ~set_paused true first)";
+  response.success = false;
+  if (const std::optional<std::string> refusal = StepRefusal(request.steps)) {
+    response.message = "~step " + *refusal;
     return true;
   }
-  if (request.steps == 0) {
-    response.success = false;
-    response.message = "steps must be >= 1";
-    return true;
-  }
-  for (std::uint32_t i = 0; i < request.steps; ++i) StepOnce(i + 1 == request.steps);
-  publisher_.Publish(world_, Stamp());
+  StepWhilePaused(request.steps);
   response.success = true;
   response.sim_time = Stamp().toSec();
   response.message = "stepped " + std::to_string(request.steps) + " steps";
+  return true;
+}
+
+bool SimulationNode::OnStepWithWrenches(StepWithWrenches::Request& request,
+                                        StepWithWrenches::Response& response) {
+  response.sim_time = Stamp().toSec();
+  response.success = false;
+  if (const std::optional<std::string> refusal = StepRefusal(request.steps)) {
+    response.message = "~step_with_wrenches " + *refusal;
+    return true;
+  }
+  std::vector<std::string> rejections;
+  intake_.TakeArray(request.wrenches, start_stamp_, world_.time(),
+                    [this](const core::ParticleWrench& wrench) { Hold(wrench); }, &rejections);
+  const std::uint64_t hash = StepWhilePaused(request.steps);
+  response.success = true;
+  response.sim_time = Stamp().toSec();
+  response.states = ToBodyStateArray(world_, Stamp(), settings_.world_frame);
+  response.state_hash = core::HashHex(hash);
+  response.message = "stepped " + std::to_string(request.steps) + " steps";
+  if (!rejections.empty()) response.message += "; rejected " + Join(rejections);
   return true;
 }
 

@@ -143,14 +143,7 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
 }
 
 void StatePublisher::PublishBodies(const core::World& world, const ros::Time& stamp) {
-  BodyStateArray bodies;
-  bodies.header.stamp = stamp;
-  bodies.header.frame_id = world_frame_;
-  bodies.bodies.reserve(world.size());
-  for (std::size_t body = 0; body < world.size(); ++body) {
-    bodies.bodies.push_back(ToBodyState(world.model(body), world.state(body)));
-  }
-  bodies_.publisher.publish(bodies);
+  bodies_.publisher.publish(ToBodyStateArray(world, stamp, world_frame_));
 }
 
 void StatePublisher::PublishParticles(const core::World& world, const ros::Time& stamp) {

@@ -21,6 +21,7 @@ const char* ToString(WrenchMsgRejection rejection) {
     case WrenchMsgRejection::kParticleOutOfRange: return "particle_out_of_range";
     case WrenchMsgRejection::kUnknownFrame: return "unknown_frame";
     case WrenchMsgRejection::kTooManyEntries: return "too_many_entries";
+    case WrenchMsgRejection::kLockstepFutureStamp: return "lockstep_future_stamp";
   }
   return "unknown";
 }

@@ -84,6 +84,17 @@ TEST(StepPacer, UnpacedHandsOutFullBatches) {
   pacer.Restart(Clock::time_point{});
   EXPECT_EQ(pacer.TakeDueSteps(Clock::time_point{}), 100u);
   EXPECT_EQ(pacer.next_due(), Clock::time_point::min());
+  EXPECT_EQ(pacer.TakeDueSteps(Clock::time_point{}, 7), 7u);
+}
+
+TEST(StepPacer, ACappedBatchLeavesTheRestDue) {
+  StepPacer pacer(1e-3, 1.0, 0.1);
+  const Clock::time_point t0{};
+  pacer.Restart(t0);
+  EXPECT_EQ(pacer.TakeDueSteps(t0 + microseconds(4500), 2), 2u);  // 5 due
+  EXPECT_EQ(pacer.next_due(), t0 + microseconds(2000));
+  EXPECT_EQ(pacer.TakeDueSteps(t0 + microseconds(4500)), 3u);
+  EXPECT_EQ(pacer.next_due(), t0 + microseconds(5000));
 }
 
 }  // namespace

@@ -1,4 +1,5 @@
 // The wrench intake's checks and counts, without a master (ros::Time works offline).
+#include <cmath>
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -72,7 +73,7 @@ TEST(WrenchIntake, CountsEachRejectionOnceByReasonAndCapsArrays) {
   array.wrenches = {Message("rod", 0, ""), Message("rod", 9, ""), Message("box", 1, "nowhere"),
                     Message("box", 2, "")};
   std::vector<std::size_t> held;
-  intake.TakeArray(array, start, 0.0, [&](const core::ParticleWrench& w) { held.push_back(w.particle); });
+  intake.TakeArray(array.wrenches, start, 0.0, [&](const core::ParticleWrench& w) { held.push_back(w.particle); });
   EXPECT_EQ(held, (std::vector<std::size_t>{0, 2}));  // valid entries still apply, in order
   EXPECT_EQ(intake.rejected_messages(), 3u);
   EXPECT_EQ(intake.rejected(WrenchMsgRejection::kUnknownBody), 1u);
@@ -81,11 +82,29 @@ TEST(WrenchIntake, CountsEachRejectionOnceByReasonAndCapsArrays) {
   // Entries past the cap are rejected unread, one count each.
   array.wrenches.assign(WrenchIntake::kMaxArrayEntries + 5, Message("box", 0, ""));
   std::size_t count = 0;
-  intake.TakeArray(array, start, 0.0, [&](const core::ParticleWrench&) { ++count; });
+  intake.TakeArray(array.wrenches, start, 0.0, [&](const core::ParticleWrench&) { ++count; });
   EXPECT_EQ(count, WrenchIntake::kMaxArrayEntries);
   EXPECT_EQ(intake.rejected(WrenchMsgRejection::kTooManyEntries), 5u);
   EXPECT_EQ(intake.rejected_messages(), 8u);
   EXPECT_STREQ(ToString(WrenchMsgRejection::kTooManyEntries), "too_many_entries");
+}
+
+TEST(WrenchIntake, ListsEachRejectedEntryByIndexForAService) {
+  ros::Time::init();
+  const ros::Time start(1700000000, 0);
+  WrenchIntake intake(Frames());
+  std::vector<ParticleWrench> entries = {Message("box", 0, ""), Message("cone", 0, ""),
+                                         Message("box", 1, ""), Message("box", 2, "nowhere")};
+  entries[2].wrench.force.x = std::nan("");
+  std::vector<std::string> rejections;
+  std::size_t held = 0;
+  intake.TakeArray(entries, start, 0.0, [&](const core::ParticleWrench&) { ++held; }, &rejections);
+  EXPECT_EQ(held, 1u);
+  ASSERT_EQ(rejections.size(), 3u);
+  EXPECT_EQ(rejections[0].rfind("wrenches[1]: unknown_body: ", 0), 0u) << rejections[0];
+  EXPECT_EQ(rejections[1].rfind("wrenches[2]: non_finite: ", 0), 0u) << rejections[1];
+  EXPECT_EQ(rejections[2].rfind("wrenches[3]: unknown_frame: ", 0), 0u) << rejections[2];
+  EXPECT_EQ(intake.rejected_messages(), 3u);  // counted as on the topic
 }
 
 }  // namespace

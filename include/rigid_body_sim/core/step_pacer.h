@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <limits>
 
 namespace rigid_body_sim::core {
 
@@ -26,7 +27,9 @@ class StepPacer {
   // yet, several after a late wake-up (an overrun), at most the catch-up
   // bound; beyond it the wall-clock debt is forgiven (a catch-up limit hit),
   // so the simulation falls behind the wall clock instead of racing it.
-  std::uint64_t TakeDueSteps(Clock::time_point now);
+  // At most `at_most` are handed out; the rest stay due.
+  std::uint64_t TakeDueSteps(Clock::time_point now,
+                             std::uint64_t at_most = std::numeric_limits<std::uint64_t>::max());
 
   // When the next step is due; unpaced: always (the earliest time point).
   Clock::time_point next_due() const;

@@ -5,6 +5,7 @@
 #include <string>
 
 #include <rigid_body_sim/BodyState.h>
+#include <rigid_body_sim/BodyStateArray.h>
 
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Transform.h>
@@ -16,6 +17,7 @@
 
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/world.h"
 
 namespace rigid_body_sim {
 
@@ -29,6 +31,9 @@ geometry_msgs::Transform ToTransformMsg(const core::BodyState& state);
 // COM velocity and angular velocity, world axes.
 geometry_msgs::Twist ToTwistMsg(const core::BodyModel& model, const core::BodyState& state);
 BodyState ToBodyState(const core::BodyModel& model, const core::BodyState& state);
+// Every body of `world` in scene order, as ~bodies carries them.
+BodyStateArray ToBodyStateArray(const core::World& world, const ros::Time& stamp,
+                                const std::string& world_frame);
 
 // The TF frame of a body: tf_prefix + name, as written, without a leading '/'
 // (tf2 frame ids have none).

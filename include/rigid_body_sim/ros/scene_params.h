@@ -20,6 +20,15 @@
 
 namespace rigid_body_sim {
 
+// Lockstep with controllers that answer each published cycle on
+// ~lockstep_wrenches (doc/node.md, "Lockstep").
+struct LockstepSettings {
+  bool enabled = false;
+  std::vector<std::string> publishers;  // node names, resolved; not empty when enabled
+  double timeout_s = 1.0;               // wall time a cycle waits for answers, > 0
+  double startup_timeout_s = 30.0;      // wall time the start waits for the publishers, >= 0
+};
+
 struct NodeSettings {
   std::string world_frame = "world";
   std::string tf_prefix;                // prepended as written to body names for TF
@@ -40,6 +49,7 @@ struct NodeSettings {
   // Most substeps of dt/n one body may take in a step (extension); the
   // default keeps one body's worst step under 1 ms at 10,000 bodies.
   std::uint32_t max_substeps = core::WorldOptions{}.max_substeps;
+  LockstepSettings lockstep;
 };
 
 // The bodies of a scene, in its order: one model, initial state and set of

@@ -3,13 +3,20 @@
 // states out (StatePublisher) and report (NodeDiagnostics). No physics here.
 //
 // Threading: everything runs on the thread that calls Run(). The loop steps
-// the world when the pacer says a step is due and, while waiting for the next
-// one, serves the global callback queue. Callbacks therefore run between
-// steps, never during one, and need no lock; a wrench received before step n
-// acts on step n exactly.
+// the world when the pacer says a step is due (and, under lockstep, when the
+// controllers have answered the last published cycle) and, while waiting,
+// serves the global callback queue. Callbacks therefore run between steps,
+// never during one, and need no lock; a wrench received before step n acts
+// on step n exactly.
+//
+// Stamps: step n reaches the lattice point K0 + n (core::TimeLattice), K0
+// fixed when stepping starts; a cycle is published when K0 + n is a multiple
+// of the publish decimation.
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <geometry_msgs/WrenchStamped.h>
@@ -20,14 +27,18 @@
 #include <rigid_body_sim/ParticleWrenchArray.h>
 #include <rigid_body_sim/SetBodyState.h>
 #include <rigid_body_sim/SpawnBody.h>
+#include <rigid_body_sim/StampedParticleWrenchArray.h>
 #include <rigid_body_sim/Step.h>
+#include <rigid_body_sim/StepWithWrenches.h>
 
 #include <ros/ros.h>
 #include <std_srvs/Empty.h>
 #include <std_srvs/SetBool.h>
 
 #include "rigid_body_sim/core/step_pacer.h"
+#include "rigid_body_sim/core/time_lattice.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/lockstep_gate.h"
 #include "rigid_body_sim/ros/node_diagnostics.h"
 #include "rigid_body_sim/ros/runtime_config.h"
 #include "rigid_body_sim/ros/scene_params.h"
@@ -47,19 +58,41 @@ class SimulationNode {
  private:
   using Clock = core::StepPacer::Clock;
 
+  // Fixes K0 from the clock: the first lattice point at or after now (under
+  // lockstep, after waiting for the first point that is a publish cycle, so
+  // that every run meets its controllers at the same step counts).
+  void StartClock();
+  // Lockstep's start: until every listed controller is connected, or the
+  // startup timeout.
+  void WaitForLockstepPublishers();
   // One step; `publishes_after` when its state will be published.
   void StepOnce(bool publishes_after);
-  // The ROS stamp of the world's current state: start + n·dt.
+  // Publishes the current state as a cycle, records its state hash for
+  // diagnostics and, under lockstep, waits at it for answers. Returns the hash.
+  std::uint64_t PublishCycle();
+  // Under lockstep: leaves the open cycle once all have answered or its
+  // timeout has passed (with a warning and a count).
+  void PassLockstepGate(Clock::time_point now);
+  // The ROS stamp of the world's current state: lattice point K0 + n.
   ros::Time Stamp() const;
-  bool AtPublishBoundary() const;
+  // Whether the state after `steps` steps falls on a publish cycle.
+  bool IsPublishCycle(std::uint64_t steps) const;
+  std::uint64_t StepsToNextCycle() const;
+  // Why a ~step or ~step_with_wrenches request cannot run, if it cannot.
+  std::optional<std::string> StepRefusal(std::uint32_t steps) const;
+  // Those steps, without waiting for controllers, then the state published;
+  // returns its hash.
+  std::uint64_t StepWhilePaused(std::uint32_t steps);
   void Hold(const core::ParticleWrench& wrench);
 
   void OnParticleWrench(const ParticleWrench::ConstPtr& msg);
   void OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg);
+  void OnLockstepAnswer(const ros::MessageEvent<const StampedParticleWrenchArray>& event);
   void OnBodyWrench(const std::string& body, const geometry_msgs::WrenchStamped& msg);
   bool OnReset(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool OnSetPaused(std_srvs::SetBool::Request& request, std_srvs::SetBool::Response& response);
   bool OnStep(Step::Request& request, Step::Response& response);
+  bool OnStepWithWrenches(StepWithWrenches::Request& request, StepWithWrenches::Response& response);
   bool OnSetBodyState(SetBodyState::Request& request, SetBodyState::Response& response);
   bool OnClearWrenches(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool OnApplyBodyWrench(ApplyBodyWrench::Request& request, ApplyBodyWrench::Response& response);
@@ -76,9 +109,13 @@ class SimulationNode {
   core::StepPacer pacer_;
   WrenchIntake intake_;
   StatePublisher publisher_;
+  std::optional<LockstepGate> lockstep_;  // with ~lockstep only
   NodeDiagnostics diagnostics_;
   bool paused_ = false;
-  ros::Time start_stamp_;  // t0: ROS time when stepping started; the world counts from 0
+  const core::TimeLattice lattice_;
+  std::int64_t first_index_ = 0;  // K0: t_0's lattice point; the world counts from 0
+  ros::Time start_stamp_;         // t_0
+  LogThrottle lockstep_warnings_{1.0};
   ros::NodeHandle private_nh_;
   std::vector<ros::Subscriber> subscribers_;
   std::vector<ros::ServiceServer> services_;

@@ -32,6 +32,8 @@ class StatePublisher {
   void RemoveBody(std::size_t index);
 
   const BodyTopics& body_topics() const { return body_topics_; }
+  // Subscribers connected to ~bodies.
+  int bodies_subscribers() const { return bodies_.subscribers; }
   // Whether the step before the next publish must be recorded
   // (core::World::RecordNextStep) for someone's imu or applied_wrench.
   bool wants_step_record() const { return body_topics_.step_record_subscribers() > 0; }

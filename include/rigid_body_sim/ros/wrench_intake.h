@@ -33,10 +33,12 @@ enum class WrenchMsgRejection {
   kParticleOutOfRange,
   kUnknownFrame,
   kTooManyEntries,  // array entries past WrenchIntake::kMaxArrayEntries
+  kLockstepFutureStamp,  // a lockstep answer stamped after the last published cycle
 };
-constexpr std::size_t kWrenchMsgRejectionCount = 6;
+constexpr std::size_t kWrenchMsgRejectionCount = 7;
 // "non_finite", "unknown_body", "particle_out_of_range", "unknown_frame",
-// "too_many_entries" (the diagnostics key is "rejected_" + this).
+// "too_many_entries", "lockstep_future_stamp" (the diagnostics key is
+// "rejected_" + this).
 const char* ToString(WrenchMsgRejection rejection);
 
 // What a message is checked against: the scene's bodies and the frames that
@@ -110,16 +112,35 @@ class WrenchIntake {
                                                  const std::string& body,
                                                  const ros::Time& start_stamp,
                                                  double next_step_time_s);
-  // Every entry in order through Take, each accepted one handed to `hold`.
+  // Every entry of an array in order, each accepted one handed to `hold`;
+  // with `rejections`, each rejected one is also listed there as
+  // "wrenches[i]: reason: detail" (for a service's answer).
   template <typename Hold>
-  void TakeArray(const ParticleWrenchArray& msg, const ros::Time& start_stamp,
-                 double next_step_time_s, Hold&& hold) {
-    const std::size_t taken = std::min(msg.wrenches.size(), kMaxArrayEntries);
+  void TakeArray(const std::vector<ParticleWrench>& entries, const ros::Time& start_stamp,
+                 double next_step_time_s, Hold&& hold,
+                 std::vector<std::string>* rejections = nullptr) {
+    const std::size_t taken = std::min(entries.size(), kMaxArrayEntries);
     for (std::size_t i = 0; i < taken; ++i) {
-      if (const auto wrench = Take(msg.wrenches[i], start_stamp, next_step_time_s)) hold(*wrench);
+      const CheckedWrench checked = CheckParticleWrench(entries[i], frames_, start_stamp, next_step_time_s);
+      if (checked.accepted()) {
+        hold(checked.wrench);
+        continue;
+      }
+      Reject("particle wrench", checked.rejection, checked.detail);
+      if (rejections != nullptr) {
+        rejections->push_back("wrenches[" + std::to_string(i) + "]: " + ToString(checked.rejection) +
+                              ": " + checked.detail);
+      }
     }
-    if (taken < msg.wrenches.size()) RejectExcessEntries(msg.wrenches.size() - taken);
+    if (taken == entries.size()) return;
+    RejectExcessEntries(entries.size() - taken);
+    if (rejections != nullptr) {
+      rejections->push_back("wrenches[" + std::to_string(taken) + ".." +
+                            std::to_string(entries.size() - 1) + "]: too_many_entries");
+    }
   }
+  // A whole message rejected for `reason`: counted and warned about.
+  void Reject(const char* what, WrenchMsgRejection reason, const std::string& detail);
 
   std::uint64_t rejected_messages() const { return rejected_messages_; }
   std::uint64_t rejected(WrenchMsgRejection reason) const {
@@ -128,7 +149,6 @@ class WrenchIntake {
 
  private:
   void RejectExcessEntries(std::size_t count);
-  void Reject(const char* what, WrenchMsgRejection reason, const std::string& detail);
 
   WrenchFrames frames_;
   LogThrottle warnings_{1.0};  // one warning a second at most
