@@ -134,11 +134,11 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
                    std::to_string(world_.frozen_count()) +
                        " body(ies) frozen at their last finite state; ~reset or "
                        "~set_body_state brings them back");
-  } else if (paused_) {
-    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "paused");
-  } else if (lockstep_timed_out_) {
+  } else if (lockstep_timed_out_) {  // in the last report period
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                    "lockstep: a controller did not answer within ~lockstep_timeout");
+  } else if (paused_) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "paused");
   } else if (slow) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                    "slower than the requested real-time factor");

@@ -1,0 +1,229 @@
+"""A client of the rigid_body_sim node for downstream tests (doc/testing.md).
+
+    from rigid_body_sim.testing import SimClient
+    sim = SimClient()              # waits for /rigid_body_sim
+    sim.pause()
+    result = sim.step(100)         # 100 steps; the state reached
+    result.states['box'].position  # numpy array, world [m]
+
+Everything goes through the node's public topics and services; nothing here
+knows its internals. States come as `BodyState` tuples of numpy arrays, keyed
+by body name in scene order.
+"""
+import collections
+import struct
+import threading
+
+import numpy as np
+import rospy
+import yaml
+from diagnostic_msgs.msg import DiagnosticArray
+from geometry_msgs.msg import Point, Vector3, Wrench
+from rigid_body_sim.msg import (BodyStateArray, ParticleWrench,
+                                StampedParticleWrenchArray)
+from rigid_body_sim.srv import (ApplyBodyWrench, ClearBodyWrenches, DeleteBody,
+                                SetBodyState, SpawnBody, StepWithWrenches)
+from std_srvs.srv import Empty, SetBool
+
+# One body as ~bodies carries it: numpy arrays in world axes (SI units);
+# orientation is (x, y, z, w).
+BodyState = collections.namedtuple('BodyState', [
+    'name', 'position', 'orientation', 'linear_velocity', 'angular_velocity',
+    'linear_momentum', 'angular_momentum', 'kinetic_energy'])
+
+# What a step returns: the stamp [s] of the state reached, the states, and
+# the node's state hash of them.
+StepResult = collections.namedtuple('StepResult', ['sim_time', 'states', 'state_hash', 'message'])
+
+_FNV_OFFSET_BASIS = 0xcbf29ce484222325
+_FNV_PRIME = 0x100000001b3
+
+
+def _xyz(vector):
+    return np.array([vector.x, vector.y, vector.z])
+
+
+def to_states(msg):
+    """A BodyStateArray as an ordered dict: body name -> BodyState."""
+    states = collections.OrderedDict()
+    for body in msg.bodies:
+        pose, twist = body.pose, body.twist
+        states[body.name] = BodyState(
+            body.name, _xyz(pose.position),
+            np.array([pose.orientation.x, pose.orientation.y, pose.orientation.z, pose.orientation.w]),
+            _xyz(twist.linear), _xyz(twist.angular), _xyz(body.linear_momentum),
+            _xyz(body.angular_momentum), body.kinetic_energy)
+    return states
+
+
+def state_hash(msg):
+    """The state hash of a BodyStateArray, as the node computes it: FNV-1a 64
+    over the little-endian doubles position, orientation (x, y, z, w), linear
+    and angular momentum of every body, as 16 lower-case hex digits."""
+    values = []
+    for body in msg.bodies:
+        p, q = body.pose.position, body.pose.orientation
+        values += [p.x, p.y, p.z, q.x, q.y, q.z, q.w]
+        for v in (body.linear_momentum, body.angular_momentum):
+            values += [v.x, v.y, v.z]
+    h = _FNV_OFFSET_BASIS
+    for byte in struct.pack('<%dd' % len(values), *values):
+        h = ((h ^ byte) * _FNV_PRIME) & 0xffffffffffffffff
+    return '%016x' % h
+
+
+def particle_wrench(body, particle=0, force=(0, 0, 0), torque=(0, 0, 0), frame='', start=None):
+    """A ParticleWrench: `force` [N] at particle `particle` of `body`, `torque`
+    [N m] a pure couple; axes of `frame` ('' = world, the body's name = its own
+    axes); from `start` (rospy.Time), or from the next step when None."""
+    msg = ParticleWrench()
+    msg.header.frame_id = frame
+    if start is not None:
+        msg.header.stamp = start
+    msg.body = body
+    msg.particle = particle
+    msg.wrench = Wrench(force=Vector3(*force), torque=Vector3(*torque))
+    return msg
+
+
+class SimClient(object):
+    """The node `node` (default /rigid_body_sim) seen from a test. Waits for
+    its services (at most `timeout` s) and keeps the latest ~bodies message."""
+
+    def __init__(self, node='/rigid_body_sim', timeout=30.0):
+        self.node = rospy.resolve_name(node)
+        self._lock = threading.Condition()
+        self._latest = None
+        self._diagnostics = {}
+        self.wait_for_node(timeout)
+        self._services = {}
+        for name, srv in (('set_paused', SetBool), ('step_with_wrenches', StepWithWrenches),
+                          ('reset', Empty), ('clear_wrenches', Empty),
+                          ('apply_body_wrench', ApplyBodyWrench),
+                          ('clear_body_wrenches', ClearBodyWrenches),
+                          ('set_body_state', SetBodyState), ('spawn_body', SpawnBody),
+                          ('delete_body', DeleteBody)):
+            self._services[name] = rospy.ServiceProxy(self._name(name), srv)
+        self._bodies_sub = rospy.Subscriber(self._name('bodies'), BodyStateArray, self._on_bodies,
+                                            queue_size=10, tcp_nodelay=True)
+        self._diagnostics_sub = rospy.Subscriber('/diagnostics', DiagnosticArray,
+                                                 self._on_diagnostics, queue_size=10)
+
+    def _name(self, relative):
+        return self.node + '/' + relative
+
+    def wait_for_node(self, timeout=30.0):
+        """Blocks until the node serves ~step_with_wrenches; rospy's
+        ROSException after `timeout` s."""
+        rospy.wait_for_service(self._name('step_with_wrenches'), timeout)
+
+    def _call(self, service, *args):
+        response = self._services[service](*args)
+        if hasattr(response, 'success') and not response.success:
+            raise RuntimeError('%s: %s' % (self._name(service), response.message))
+        return response
+
+    def pause(self):
+        self._call('set_paused', True)
+
+    def resume(self):
+        self._call('set_paused', False)
+
+    def step(self, steps=1):
+        """`steps` steps while paused; a StepResult."""
+        return self.step_with_wrenches([], steps)
+
+    def step_with_wrenches(self, wrenches, steps=1):
+        """Holds `wrenches` (ParticleWrench messages, see particle_wrench())
+        as one array, then `steps` steps while paused; a StepResult. Rejected
+        entries are named in its message; RuntimeError if no step was taken."""
+        response = self._call('step_with_wrenches', list(wrenches), steps)
+        return StepResult(response.sim_time, to_states(response.states), response.state_hash,
+                          response.message)
+
+    def push(self, body, force, point=(0, 0, 0), frame='', torque=(0, 0, 0), duration=-1.0,
+             start=None):
+        """A wrench job (~apply_body_wrench): `force` [N] at `point` (body
+        frame [m]) and the couple `torque` [N m], in the axes of `frame`, for
+        `duration` s (< 0: until cleared) from `start` (None: the next step)."""
+        self._call('apply_body_wrench', body, frame, Point(*point),
+                   Wrench(force=Vector3(*force), torque=Vector3(*torque)),
+                   start if start is not None else rospy.Time(),
+                   rospy.Duration.from_sec(duration))
+
+    def clear_wrenches(self, body=''):
+        """Drops the wrenches of `body` ('' = every body)."""
+        self._call('clear_body_wrenches', body)
+
+    def reset(self):
+        self._call('reset')
+
+    def spawn(self, body):
+        """Adds a body: a scene entry as a dict or as YAML text."""
+        text = body if isinstance(body, str) else yaml.safe_dump(body)
+        self._call('spawn_body', text)
+
+    def delete(self, body):
+        self._call('delete_body', body)
+
+    def _on_bodies(self, msg):
+        with self._lock:
+            self._latest = msg
+            self._lock.notify_all()
+
+    def _on_diagnostics(self, msg):
+        for status in msg.status:
+            if status.name == self.node[1:] + ': simulation':
+                with self._lock:
+                    self._diagnostics = {kv.key: kv.value for kv in status.values}
+                    self._lock.notify_all()
+
+    def latest(self, timeout=10.0):
+        """The last ~bodies message (waits for the first one)."""
+        with self._lock:
+            if not self._lock.wait_for(lambda: self._latest is not None, timeout):
+                raise RuntimeError('no message on %s within %g s' % (self._name('bodies'), timeout))
+            return self._latest
+
+    def states(self, timeout=10.0):
+        """The last published states: body name -> BodyState."""
+        return to_states(self.latest(timeout))
+
+    def state(self, body, timeout=10.0):
+        """The last published state of `body`."""
+        return self.states(timeout)[body]
+
+    def diagnostics(self, timeout=10.0):
+        """The node's last diagnostics values (key -> string), e.g.
+        'state_hash', 'lockstep_timeouts'."""
+        with self._lock:
+            if not self._lock.wait_for(lambda: bool(self._diagnostics), timeout):
+                raise RuntimeError('no diagnostics from %s within %g s' % (self.node, timeout))
+            return dict(self._diagnostics)
+
+
+class LockstepController(object):
+    """Answers every cycle of a node running with ~lockstep: `control(states,
+    stamp)` gets each ~bodies message's states (body name -> BodyState) and
+    its stamp and returns the ParticleWrench messages to hold (an empty list
+    or None: nothing). List this node's name (rospy.get_name()) in the
+    simulator's ~lockstep_publishers."""
+
+    def __init__(self, control, node='/rigid_body_sim'):
+        self.node = rospy.resolve_name(node)
+        self._control = control
+        # Publisher first: the simulator starts once both connections exist.
+        self._answers = rospy.Publisher(self.node + '/lockstep_wrenches', StampedParticleWrenchArray,
+                                        queue_size=10, tcp_nodelay=True)
+        self._bodies = rospy.Subscriber(self.node + '/bodies', BodyStateArray, self._on_bodies,
+                                        queue_size=10, tcp_nodelay=True)
+
+    def _on_bodies(self, msg):
+        answer = StampedParticleWrenchArray()
+        answer.header.stamp = msg.header.stamp
+        answer.wrenches = list(self._control(to_states(msg), msg.header.stamp) or [])
+        self._answers.publish(answer)
+
+    def stop(self):
+        self._bodies.unregister()
+        self._answers.unregister()
