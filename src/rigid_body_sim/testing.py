@@ -56,16 +56,17 @@ def to_states(msg):
     return states
 
 
-def state_hash(msg):
-    """The state hash of a BodyStateArray, as the node computes it: FNV-1a 64
-    over the little-endian doubles position, orientation (x, y, z, w), linear
-    and angular momentum of every body, as 16 lower-case hex digits."""
+def state_hash(states):
+    """The state hash of a BodyStateArray (or of its to_states()), as the node
+    computes it: FNV-1a 64 over the little-endian doubles position,
+    orientation (x, y, z, w), linear and angular momentum of every body in
+    order, as 16 lower-case hex digits."""
+    if isinstance(states, BodyStateArray):
+        states = to_states(states)
     values = []
-    for body in msg.bodies:
-        p, q = body.pose.position, body.pose.orientation
-        values += [p.x, p.y, p.z, q.x, q.y, q.z, q.w]
-        for v in (body.linear_momentum, body.angular_momentum):
-            values += [v.x, v.y, v.z]
+    for body in states.values():
+        for array in (body.position, body.orientation, body.linear_momentum, body.angular_momentum):
+            values += [float(v) for v in array]
     h = _FNV_OFFSET_BASIS
     for byte in struct.pack('<%dd' % len(values), *values):
         h = ((h ^ byte) * _FNV_PRIME) & 0xffffffffffffffff
