@@ -57,8 +57,10 @@ For each command run against the node:
     start (invariants of the torque-free motion), stamps still increase;
   * `~set_paused true`: no `~bodies` message for 1 s; `~step N`: exactly one
     message whose stamp is the response's `sim_time`, N to N + k - 1 steps
-    after the last one before pausing (k = rate / publish_rate); `false`:
-    messages flow again with later stamps;
+    after the last one before pausing (k = rate / publish_rate);
+    `~step_with_wrenches`: its entries join the model as an array on
+    `~particle_wrenches` would, then as `~step`, and its `state_hash` is
+    the hash of that message; `false`: messages flow again with later stamps;
   * `~set_body_state`: the body's next state has the requested position,
     orientation, linear and angular velocity.
 - the node's PID is the same at the end as at the start (with respawn on, a
@@ -86,6 +88,7 @@ import yaml
 from xmlrpc.client import ServerProxy
 
 from rigid_body_sim.msg import BodyStateArray
+from rigid_body_sim.testing import state_hash
 from visualization_msgs.msg import MarkerArray
 
 PKG = 'rigid_body_sim'
@@ -515,6 +518,10 @@ class ReadmeExamples(unittest.TestCase):
             entries = data.get('wrenches', [])
         else:
             return None   # not a push: no model to update
+        return self.hold_entries(where, entries, names)
+
+    def hold_entries(self, where, entries, names):
+        """Holds ParticleWrench entries in the model; the bodies they push."""
         pushed = set()
         for e in entries:
             body = e.get('body')
@@ -708,7 +715,10 @@ class ReadmeExamples(unittest.TestCase):
                         msgs = self.wait_new(n_before, 1, 2.0, where + ' (resumed)')
                         self.assertGreater(msgs[0].header.stamp, before.header.stamp,
                                            '%s: stamps went back after resuming' % where)
-                elif name == 'step':
+                elif name in ('step', 'step_with_wrenches'):
+                    if name == 'step_with_wrenches':
+                        self.hold_entries(where, request.get('wrenches', []),
+                                          [b.name for b in before.bodies])
                     steps = int(request['steps'])
                     m = re.search(r'(?m)^sim_time: (\S+)$', out)
                     self.assertIsNotNone(m, '%s: no sim_time in the response\n%s' % (where, ctx))
@@ -727,6 +737,12 @@ class ReadmeExamples(unittest.TestCase):
                                     'before pausing; expected %d to %d steps of %g s'
                                     % (where, advance, steps, steps + k - 1, dt))
                     last_before_pause = msgs[0]
+                    if name == 'step_with_wrenches':
+                        m = re.search(r'(?m)^state_hash: "?([0-9a-f]{16})"?$', out)
+                        self.assertIsNotNone(m, '%s: no state_hash in the response\n%s' % (where, ctx))
+                        self.assertEqual(m.group(1), state_hash(msgs[0]),
+                                         '%s: state_hash is not the hash of the published state'
+                                         % where)
                 elif name == 'set_body_state':
                     self.check_set_body_state(where, request, n_before)
             if not paused:

@@ -4,9 +4,10 @@
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
 
-// One clone of the kernel per x86-64 level, picked by the loader; elsewhere
-// the compiler's default vectorisation.
-#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
+// One clone of the kernel per x86-64 level, picked by the loader; elsewhere,
+// or built with -DRBS_SIMD_CLONES=OFF (the same bits on every x86-64
+// machine, doc/testing.md), the compiler's default vectorisation.
+#if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(RBS_NO_SIMD_CLONES)
 #define RBS_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define RBS_SIMD_CLONES
