@@ -13,6 +13,7 @@ by body name in scene order.
 import collections
 import struct
 import threading
+import warnings
 
 import numpy as np
 import rospy
@@ -214,8 +215,13 @@ class LockstepController(object):
         self.node = rospy.resolve_name(node)
         self._control = control
         # Publisher first: the simulator starts once both connections exist.
-        self._answers = rospy.Publisher(self.node + '/lockstep_wrenches', StampedParticleWrenchArray,
-                                        queue_size=10, tcp_nodelay=True)
+        # queue_size None publishes in the callback's thread, without the
+        # hand-over to a queue thread that would add to every cycle (rospy
+        # warns about it as if it were an oversight).
+        with warnings.catch_warnings():
+            warnings.simplefilter('ignore')
+            self._answers = rospy.Publisher(self.node + '/lockstep_wrenches', StampedParticleWrenchArray,
+                                            queue_size=None, tcp_nodelay=True)
         self._bodies = rospy.Subscriber(self.node + '/bodies', BodyStateArray, self._on_bodies,
                                         queue_size=10, tcp_nodelay=True)
 
