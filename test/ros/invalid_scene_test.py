@@ -231,6 +231,24 @@ class InvalidScene(unittest.TestCase):
         self.check_rejected('max_substeps_fractional',
                             {'max_substeps': 2.5, 'bodies': [good_body()]}, 'max_substeps')
 
+    def test_lockstep_without_publishers(self):
+        self.check_rejected('lockstep_without_publishers',
+                            {'lockstep': True, 'bodies': [good_body()]}, 'lockstep_publishers')
+
+    def test_lockstep_publishers_not_a_list(self):
+        self.check_rejected('lockstep_publishers_not_a_list',
+                            {'lockstep': True, 'lockstep_publishers': '/controller',
+                             'bodies': [good_body()]}, 'lockstep_publishers')
+
+    def test_lockstep_timeout_zero(self):
+        self.check_rejected('lockstep_timeout_zero',
+                            {'lockstep': True, 'lockstep_publishers': ['/controller'],
+                             'lockstep_timeout': 0.0, 'bodies': [good_body()]}, 'lockstep_timeout')
+
+    def test_rate_above_a_nanosecond_lattice(self):
+        self.check_rejected('rate_above_1e9', {'rate': 2e9, 'publish_rate': 1.0,
+                                               'bodies': [good_body()]}, 'rate')
+
 
 if __name__ == '__main__':
     rostest.rosrun(PKG, 'invalid_scene', InvalidScene)
