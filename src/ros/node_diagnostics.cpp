@@ -165,7 +165,13 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
   status.add("rejected_messages", intake_.rejected_messages());
   for (std::size_t reason = 1; reason < kWrenchMsgRejectionCount; ++reason) {
     const auto rejection = static_cast<WrenchMsgRejection>(reason);
+    if (rejection == WrenchMsgRejection::kOtherShard) continue;
     status.add(std::string("rejected_") + ToString(rejection), intake_.rejected(rejection));
+  }
+  if (settings_.shard.count > 1) {
+    status.add("shard_index", settings_.shard.index);
+    status.add("shard_count", settings_.shard.count);
+    status.add("other_shard", intake_.other_shard());
   }
   if (lockstep_ != nullptr) {
     status.add("lockstep_late_answers", lockstep_->late_answers());

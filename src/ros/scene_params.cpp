@@ -23,6 +23,8 @@ constexpr int kDefaultShapeResolution = 5;
 constexpr int kMaxParticlesPerBody = 100000;
 constexpr int kMaxShapeResolution = 40;  // 64,000 cells
 constexpr std::size_t kMaxNameLength = 128;
+// More shards than this would be more processes than any one scene needs.
+constexpr double kMaxShards = 1024;
 // ~max_substeps above this would let one body stall the loop for seconds.
 constexpr double kMaxSubstepsLimit = 1e6;
 
@@ -326,6 +328,20 @@ LockstepSettings ReadLockstep(const ParamReader& params) {
   return lockstep;
 }
 
+ShardSettings ReadShard(const ParamReader& params) {
+  const double count = params.Number("shard_count", 1.0);
+  if (count < 1.0 || count > kMaxShards || count != std::floor(count)) {
+    throw SceneError("~shard_count must be a whole number from 1 to " + FormatNumber(kMaxShards) +
+                     ", got " + FormatNumber(count));
+  }
+  const double index = params.Number("shard_index", 0.0);
+  if (index < 0.0 || index >= count || index != std::floor(index)) {
+    throw SceneError("~shard_index must be a whole number from 0 to ~shard_count - 1 = " +
+                     FormatNumber(count - 1.0) + ", got " + FormatNumber(index));
+  }
+  return ShardSettings{static_cast<std::uint32_t>(count), static_cast<std::uint32_t>(index)};
+}
+
 NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   const ParamReader params(private_nh);
   NodeSettings settings;
@@ -374,6 +390,7 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   }
   settings.max_substeps = static_cast<std::uint32_t>(max_substeps);
   settings.lockstep = ReadLockstep(params);
+  settings.shard = ReadShard(params);
   return settings;
 }
 
@@ -427,7 +444,28 @@ Scene LoadScene(const ros::NodeHandle& private_nh) {
     throw SceneError("~bodies is missing (load a scene, e.g. config/default_scene.yaml)");
   }
   ParseBodies(bodies, &scene.bodies);
+  if (scene.settings.shard.count > 1) {
+    // Every shard checks the whole scene (names, states), with its indices.
+    const core::World whole(scene.bodies.models, scene.bodies.initial_states, core::WorldOptions(),
+                            scene.bodies.properties);
+    KeepShard(scene.settings.shard, &scene);
+  }
   return scene;
+}
+
+void KeepShard(const ShardSettings& shard, Scene* scene) {
+  SceneBodies all = std::move(scene->bodies);
+  scene->bodies = SceneBodies();
+  for (std::size_t i = 0; i < all.models.size(); ++i) {
+    const auto owner = static_cast<std::uint32_t>(i % shard.count);
+    if (owner != shard.index) {
+      scene->other_shard_bodies.emplace(all.models[i].name(), owner);
+      continue;
+    }
+    scene->bodies.models.push_back(std::move(all.models[i]));
+    scene->bodies.initial_states.push_back(all.initial_states[i]);
+    scene->bodies.properties.push_back(all.properties[i]);
+  }
 }
 
 }  // namespace rigid_body_sim

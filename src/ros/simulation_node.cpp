@@ -76,7 +76,8 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
              MakeWorldOptions(settings_), std::move(scene.bodies.properties)),
       publish_every_steps_(PublishEverySteps(settings_)),
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
-      intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix)),
+      intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix,
+                               std::move(scene.other_shard_bodies), settings_.shard.count)),
       publisher_(private_nh, settings_, world_,
                  [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
                    OnBodyWrench(body, msg);
@@ -379,7 +380,7 @@ bool SimulationNode::OnSetBodyState(SetBodyState::Request& request,
   response.success = false;
   const std::optional<std::size_t> body = world_.FindBody(request.body);
   if (!body) {
-    response.message = "unknown body '" + request.body + "'";
+    response.message = NotHereMessage(request.body, intake_.frames());
     return true;
   }
   const std::optional<core::BodyState> state =
@@ -432,7 +433,7 @@ bool SimulationNode::OnClearBodyWrenches(ClearBodyWrenches::Request& request,
   const std::optional<std::size_t> body = world_.FindBody(request.body);
   response.success = body.has_value();
   if (!body) {
-    response.message = "body: unknown body '" + request.body + "'";
+    response.message = "body: " + NotHereMessage(request.body, intake_.frames());
     return true;
   }
   world_.ClearBodyWrenches(*body);
@@ -442,6 +443,12 @@ bool SimulationNode::OnClearBodyWrenches(ClearBodyWrenches::Request& request,
 
 bool SimulationNode::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response& response) {
   response.success = false;
+  if (settings_.shard.count > 1) {
+    response.message = "~spawn_body is not available with shards (~shard_count " +
+                       std::to_string(settings_.shard.count) +
+                       "): the other shards would not know the body";
+    return true;
+  }
   SceneBodies entry;
   try {
     if (world_.size() >= kMaxSceneBodies) {
@@ -467,7 +474,7 @@ bool SimulationNode::OnDeleteBody(DeleteBody::Request& request, DeleteBody::Resp
   const std::optional<std::size_t> body = world_.FindBody(request.body);
   response.success = body.has_value();
   if (!body) {
-    response.message = "body: unknown body '" + request.body + "'";
+    response.message = "body: " + NotHereMessage(request.body, intake_.frames());
     return true;
   }
   world_.RemoveBody(*body);

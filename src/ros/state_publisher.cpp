@@ -45,7 +45,7 @@ void StatePublisher::Advertise(ros::NodeHandle& nh, const std::string& topic,
 StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings,
                                const core::World& world, BodyTopics::WrenchCallback on_body_wrench)
     : world_frame_(settings.world_frame),
-      publish_clock_(settings.publish_clock),
+      publish_clock_(settings.publish_clock && settings.shard.index == 0),  // one /clock
       publish_tf_(settings.publish_tf),
       particle_marker_diameter_m_(settings.particle_marker_diameter_m),
       tf_prefix_(settings.tf_prefix),

@@ -1,6 +1,5 @@
 #include "rigid_body_sim/ros/wrench_intake.h"
 
-
 #include "rigid_body_sim/ros/conversions.h"
 #include "rigid_body_sim/ros/log_thread.h"
 
@@ -9,6 +8,12 @@ namespace {
 
 std::string WithoutLeadingSlash(const std::string& frame) {
   return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
+}
+
+// The rejection for a body that is not this node's.
+WrenchMsgRejection NotHereRejection(const std::string& body, const WrenchFrames& frames) {
+  return frames.other_shard_bodies.count(body) > 0 ? WrenchMsgRejection::kOtherShard
+                                                   : WrenchMsgRejection::kUnknownBody;
 }
 
 }  // namespace
@@ -22,15 +27,20 @@ const char* ToString(WrenchMsgRejection rejection) {
     case WrenchMsgRejection::kUnknownFrame: return "unknown_frame";
     case WrenchMsgRejection::kTooManyEntries: return "too_many_entries";
     case WrenchMsgRejection::kLockstepFutureStamp: return "lockstep_future_stamp";
+    case WrenchMsgRejection::kOtherShard: return "other_shard";
   }
   return "unknown";
 }
 
 WrenchFrames MakeWrenchFrames(const core::World& world, const std::string& world_frame,
-                              const std::string& tf_prefix) {
+                              const std::string& tf_prefix,
+                              std::unordered_map<std::string, std::uint32_t> other_shard_bodies,
+                              std::uint32_t shard_count) {
   WrenchFrames frames;
   frames.world_frame = world_frame;
   frames.tf_prefix = tf_prefix;
+  frames.other_shard_bodies = std::move(other_shard_bodies);
+  frames.shard_count = shard_count;
   for (const core::BodyModel& model : world.models()) {
     frames.body_index.emplace(model.name(), frames.particle_counts.size());
     frames.particle_counts.push_back(model.particle_count());
@@ -52,6 +62,13 @@ void RemoveBodyFrame(const std::string& name, WrenchFrames* frames) {
     if (index > body) --index;
   }
   frames->particle_counts.erase(frames->particle_counts.begin() + static_cast<std::ptrdiff_t>(body));
+}
+
+std::string NotHereMessage(const std::string& body, const WrenchFrames& frames) {
+  const auto other = frames.other_shard_bodies.find(body);
+  if (other == frames.other_shard_bodies.end()) return "unknown body '" + body + "'";
+  return "body '" + body + "' is simulated by shard " + std::to_string(other->second) + " of " +
+         std::to_string(frames.shard_count);
 }
 
 std::optional<core::WrenchAxes> AxesOfFrame(const std::string& frame_id, const std::string& body,
@@ -87,7 +104,7 @@ CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames&
 
   const auto body = frames.body_index.find(msg.body);
   if (body == frames.body_index.end()) {
-    return reject(WrenchMsgRejection::kUnknownBody, "unknown body '" + msg.body + "'");
+    return reject(NotHereRejection(msg.body, frames), NotHereMessage(msg.body, frames));
   }
   const std::size_t body_index = body->second;
   if (msg.particle >= frames.particle_counts[body_index]) {
@@ -126,8 +143,8 @@ CheckedBodyWrench CheckBodyWrench(const geometry_msgs::WrenchStamped& msg, const
   CheckedBodyWrench result;
   const auto found = frames.body_index.find(body);
   if (found == frames.body_index.end()) {
-    result.rejection = WrenchMsgRejection::kUnknownBody;
-    result.detail = "unknown body '" + body + "'";
+    result.rejection = NotHereRejection(body, frames);
+    result.detail = NotHereMessage(body, frames);
     return result;
   }
   const Eigen::Vector3d force = FromVector3Msg(msg.wrench.force);
@@ -171,6 +188,10 @@ std::optional<core::BodyWrench> WrenchIntake::TakeBodyWrench(const geometry_msgs
 }
 
 void WrenchIntake::Reject(const char* what, WrenchMsgRejection reason, const std::string& detail) {
+  if (reason == WrenchMsgRejection::kOtherShard) {  // another shard takes it
+    ++other_shard_;
+    return;
+  }
   ++rejected_messages_;
   ++rejected_by_reason_[static_cast<std::size_t>(reason)];
   if (!warnings_.Ready()) return;

@@ -13,7 +13,7 @@ std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& re
                                               double next_step_time_s, std::string* message) {
   const auto body = frames.body_index.find(request.body);
   if (body == frames.body_index.end()) {
-    *message = "body: unknown body '" + request.body + "'";
+    *message = "body: " + NotHereMessage(request.body, frames);
     return std::nullopt;
   }
   const std::optional<core::WrenchAxes> axes =

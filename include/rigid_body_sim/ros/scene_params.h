@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
@@ -29,6 +30,13 @@ struct LockstepSettings {
   double startup_timeout_s = 30.0;      // wall time the start waits for the publishers, >= 0
 };
 
+// One of several nodes that share a scene (doc/node.md, "Shards"): it
+// simulates the bodies whose scene index i has i mod count = index.
+struct ShardSettings {
+  std::uint32_t count = 1;
+  std::uint32_t index = 0;
+};
+
 struct NodeSettings {
   std::string world_frame = "world";
   std::string tf_prefix;                // prepended as written to body names for TF
@@ -50,6 +58,7 @@ struct NodeSettings {
   // default keeps one body's worst step under 1 ms at 10,000 bodies.
   std::uint32_t max_substeps = core::WorldOptions{}.max_substeps;
   LockstepSettings lockstep;
+  ShardSettings shard;
 };
 
 // The bodies of a scene, in its order: one model, initial state and set of
@@ -62,7 +71,9 @@ struct SceneBodies {
 
 struct Scene {
   NodeSettings settings;
-  SceneBodies bodies;
+  SceneBodies bodies;  // this shard's, in scene order
+  // With shards: every other shard's body, by name → the shard that owns it.
+  std::unordered_map<std::string, std::uint32_t> other_shard_bodies;
 };
 
 // The most bodies a scene, with the ones spawned later, may have: a bound
@@ -76,8 +87,9 @@ class SceneError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-// Reads every private parameter of `private_nh`, with their documented defaults.
-// Throws SceneError.
+// Reads every private parameter of `private_nh`, with their documented defaults,
+// and keeps this shard's bodies once the whole scene is checked (by a
+// core::World built from it: std::invalid_argument). Throws SceneError.
 Scene LoadScene(const ros::NodeHandle& private_nh);
 
 // The `bodies` list alone (a particle list or a generated shape per entry),
@@ -90,5 +102,9 @@ void ParseBodies(const XmlRpc::XmlRpcValue& bodies, SceneBodies* scene_bodies);
 // list, appended to `scene_bodies`. Throws SceneError ("bodies[i] (name
 // 'n'): ..."); appends nothing then.
 void ParseBodyEntry(const XmlRpc::XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies);
+
+// Keeps the bodies of `scene` that shard `shard` simulates and records the
+// others in scene->other_shard_bodies.
+void KeepShard(const ShardSettings& shard, Scene* scene);
 
 }  // namespace rigid_body_sim

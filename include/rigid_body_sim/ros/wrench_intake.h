@@ -34,11 +34,12 @@ enum class WrenchMsgRejection {
   kUnknownFrame,
   kTooManyEntries,  // array entries past WrenchIntake::kMaxArrayEntries
   kLockstepFutureStamp,  // a lockstep answer stamped after the last published cycle
+  kOtherShard,  // a body another shard simulates: ignored, counted apart, not a rejection
 };
-constexpr std::size_t kWrenchMsgRejectionCount = 7;
+constexpr std::size_t kWrenchMsgRejectionCount = 8;
 // "non_finite", "unknown_body", "particle_out_of_range", "unknown_frame",
 // "too_many_entries", "lockstep_future_stamp" (the diagnostics key is
-// "rejected_" + this).
+// "rejected_" + this), "other_shard".
 const char* ToString(WrenchMsgRejection rejection);
 
 // What a message is checked against: the scene's bodies and the frames that
@@ -48,9 +49,17 @@ struct WrenchFrames {
   std::string tf_prefix;
   std::unordered_map<std::string, std::size_t> body_index;  // name → scene order
   std::vector<std::size_t> particle_counts;                 // per body
+  // With shards: the bodies other shards simulate → the owning shard's index.
+  std::unordered_map<std::string, std::uint32_t> other_shard_bodies;
+  std::uint32_t shard_count = 1;
 };
 WrenchFrames MakeWrenchFrames(const core::World& world, const std::string& world_frame,
-                              const std::string& tf_prefix);
+                              const std::string& tf_prefix,
+                              std::unordered_map<std::string, std::uint32_t> other_shard_bodies = {},
+                              std::uint32_t shard_count = 1);
+// Why `body` is not one of this node's: "unknown body 'x'", or, for a body of
+// another shard, "body 'x' is simulated by shard 1 of 2".
+std::string NotHereMessage(const std::string& body, const WrenchFrames& frames);
 // The frames after the world appended `model` / removed body `body`.
 void AddBodyFrame(const core::BodyModel& model, WrenchFrames* frames);
 void RemoveBodyFrame(const std::string& name, WrenchFrames* frames);
@@ -127,7 +136,7 @@ class WrenchIntake {
         continue;
       }
       Reject("particle wrench", checked.rejection, checked.detail);
-      if (rejections != nullptr) {
+      if (rejections != nullptr && checked.rejection != WrenchMsgRejection::kOtherShard) {
         rejections->push_back("wrenches[" + std::to_string(i) + "]: " + ToString(checked.rejection) +
                               ": " + checked.detail);
       }
@@ -143,6 +152,8 @@ class WrenchIntake {
   void Reject(const char* what, WrenchMsgRejection reason, const std::string& detail);
 
   std::uint64_t rejected_messages() const { return rejected_messages_; }
+  // Wrenches (messages or entries) for another shard's bodies, ignored.
+  std::uint64_t other_shard() const { return other_shard_; }
   std::uint64_t rejected(WrenchMsgRejection reason) const {
     return rejected_by_reason_[static_cast<std::size_t>(reason)];
   }
@@ -153,6 +164,7 @@ class WrenchIntake {
   WrenchFrames frames_;
   LogThrottle warnings_{1.0};  // one warning a second at most
   std::uint64_t rejected_messages_ = 0;
+  std::uint64_t other_shard_ = 0;
   std::array<std::uint64_t, kWrenchMsgRejectionCount> rejected_by_reason_{};
 };
 
