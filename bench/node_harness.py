@@ -196,25 +196,29 @@ class CpuWindow:
 # -------------------------------------------------------------- diagnostics
 
 class Diagnostics:
-    """The node's status "<node>: simulation" from /diagnostics, as received.
+    """The status "<node_name>: simulation" from /diagnostics, as received.
 
     latest: every key of the newest status (per-body keys such as
     "t_handle/angular_momentum_drift" too), values as the node wrote them.
     reports: (wall receive time, dict) per status, scalar keys only, numbers as
     floats, plus "level" and "message"."""
 
-    def __init__(self):
+    def __init__(self, node_name=NODE_NAME):
         import rospy
         from diagnostic_msgs.msg import DiagnosticArray
+        self.status_name = node_name + ": simulation"
         self.cond = threading.Condition()
         self.latest = {}
         self.reports = []
-        rospy.Subscriber("/diagnostics", DiagnosticArray, self._on_msg, queue_size=20)
+        self._sub = rospy.Subscriber("/diagnostics", DiagnosticArray, self._on_msg, queue_size=20)
+
+    def close(self):
+        self._sub.unregister()
 
     def _on_msg(self, msg):
         now = time.monotonic()
         for status in msg.status:
-            if not status.name.endswith(": simulation") or NODE_NAME not in status.name:
+            if status.name != self.status_name:
                 continue
             values = {"level": status.level, "message": status.message}
             for kv in status.values:

@@ -52,7 +52,8 @@ catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_in
   test/ros/body_state_request_test.cpp test/ros/scene_params_test.cpp
   test/ros/runtime_config_test.cpp test/ros/body_outputs_test.cpp
   test/ros/imu_noise_params_test.cpp test/ros/wrench_job_request_test.cpp
-  test/ros/yaml_value_test.cpp test/ros/lockstep_gate_test.cpp)
+  test/ros/yaml_value_test.cpp test/ros/lockstep_gate_test.cpp
+  test/ros/state_hash_worker_test.cpp)
 target_include_directories(ros_units_test PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(ros_units_test rigid_body_sim_ros gtest_main)
 add_dependencies(ros_units_test ${${PROJECT_NAME}_EXPORTED_TARGETS})

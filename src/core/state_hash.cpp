@@ -25,19 +25,31 @@ void Fnv1a64::AddDouble(double value) {
   AddBytes(bytes, sizeof bytes);
 }
 
-std::uint64_t StateHash(const World& world) {
-  Fnv1a64 hash;
+void StateHashValues(const World& world, std::vector<double>* values) {
+  values->resize(kStateHashValuesPerBody * world.size());
+  double* out = values->data();
   for (std::size_t body = 0; body < world.size(); ++body) {
     const BodyState& state = world.state(body);
-    for (int i = 0; i < 3; ++i) hash.AddDouble(state.position[i]);
-    hash.AddDouble(state.orientation.x());
-    hash.AddDouble(state.orientation.y());
-    hash.AddDouble(state.orientation.z());
-    hash.AddDouble(state.orientation.w());
-    for (int i = 0; i < 3; ++i) hash.AddDouble(state.linear_momentum[i]);
-    for (int i = 0; i < 3; ++i) hash.AddDouble(state.angular_momentum[i]);
+    for (int i = 0; i < 3; ++i) *out++ = state.position[i];
+    *out++ = state.orientation.x();
+    *out++ = state.orientation.y();
+    *out++ = state.orientation.z();
+    *out++ = state.orientation.w();
+    for (int i = 0; i < 3; ++i) *out++ = state.linear_momentum[i];
+    for (int i = 0; i < 3; ++i) *out++ = state.angular_momentum[i];
   }
+}
+
+std::uint64_t HashOfValues(const std::vector<double>& values) {
+  Fnv1a64 hash;
+  for (double value : values) hash.AddDouble(value);
   return hash.value();
+}
+
+std::uint64_t StateHash(const World& world) {
+  std::vector<double> values;
+  StateHashValues(world, &values);
+  return HashOfValues(values);
 }
 
 std::string HashHex(std::uint64_t hash) {

@@ -25,13 +25,14 @@ double Microseconds(std::chrono::steady_clock::duration duration) {
 NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& private_nh, const NodeSettings& settings,
                                  const core::World& world, const core::StepPacer& pacer,
                                  const WrenchIntake& intake, const BodyTopics& body_topics,
-                                 const LockstepGate* lockstep)
+                                 const LockstepGate* lockstep, const StateHashWorker& state_hashes)
     : settings_(settings),
       world_(world),
       pacer_(pacer),
       intake_(intake),
       body_topics_(body_topics),
       lockstep_(lockstep),
+      state_hashes_(state_hashes),
       conservation_(world),
       sweep_per_step_(world.size() / kStepsPerConservationSweep + 1),
       updater_(ros::NodeHandle(), private_nh),
@@ -63,11 +64,6 @@ void NodeDiagnostics::ReportNewFaults(const ros::Time& stamp) {
                         "~reset or ~set_body_state brings it back",
                         world_.model(body).name().c_str(), core::ToString(fault), stamp.toSec()));
   }
-}
-
-void NodeDiagnostics::RecordPublishedState(std::uint64_t state_hash, const ros::Time& stamp) {
-  state_hash_ = core::HashHex(state_hash);
-  state_hash_stamp_ = stamp;
 }
 
 void NodeDiagnostics::OnBodyStateSet(std::size_t body) {
@@ -178,9 +174,9 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
     status.add("lockstep_future_stamp", lockstep_->future_stamps());
     status.add("lockstep_timeouts", lockstep_->timeouts());
   }
-  if (!state_hash_.empty()) {
-    status.add("state_hash", state_hash_);
-    status.addf("state_hash_stamp", "%u.%09u", state_hash_stamp_.sec, state_hash_stamp_.nsec);
+  if (const std::optional<StateHashWorker::Result> hashed = state_hashes_.latest()) {
+    status.add("state_hash", core::HashHex(hashed->hash));
+    status.addf("state_hash_stamp", "%u.%09u", hashed->stamp.sec, hashed->stamp.nsec);
   }
   status.add("dropped_couples", world_.dropped_couple_count());
   status.add("frozen_bodies", world_.frozen_count());

@@ -84,7 +84,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
                  }),
       lockstep_(MakeLockstepGate(settings_.lockstep)),
       diagnostics_(private_nh, settings_, world_, pacer_, intake_, publisher_.body_topics(),
-                   lockstep_ ? &*lockstep_ : nullptr),
+                   lockstep_ ? &*lockstep_ : nullptr, state_hashes_),
       lattice_(settings_.rate_hz),
       private_nh_(private_nh),
       runtime_config_(private_nh_, settings_,
@@ -121,7 +121,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
 void SimulationNode::Run() {
   if (lockstep_) WaitForLockstepPublishers();
   StartClock();
-  Clock::time_point next_report = Clock::now() + NodeDiagnostics::kReportPeriod;
+  next_report_ = Clock::now() + NodeDiagnostics::kReportPeriod;
   pacer_.Restart(Clock::now());
   diagnostics_.Start(Clock::now());
   ROS_INFO("%s: %zu bodies, integrator %s, dt %g s, publishing every %llu steps, "
@@ -147,16 +147,16 @@ void SimulationNode::Run() {
       }
     }
     now = Clock::now();
-    if (now >= next_report) {
+    if (now >= next_report_) {
       diagnostics_.Report(now, Stamp(), paused_);
-      next_report += NodeDiagnostics::kReportPeriod;
-      if (next_report <= now) next_report = now + NodeDiagnostics::kReportPeriod;
+      next_report_ += NodeDiagnostics::kReportPeriod;
+      if (next_report_ <= now) next_report_ = now + NodeDiagnostics::kReportPeriod;
     }
     const bool waits_for_answers = lockstep_ && lockstep_->open();
     const Clock::time_point wake =
         paused_             ? now + kPausedWait
-        : waits_for_answers ? std::min(lockstep_->deadline(), next_report)
-        : pacer_.paced()    ? std::min(pacer_.next_due(), next_report)
+        : waits_for_answers ? std::min(lockstep_->deadline(), next_report_)
+        : pacer_.paced()    ? std::min(pacer_.next_due(), next_report_)
                             : now;
     const double wait_s = std::max(0.0, std::chrono::duration<double>(wake - now).count());
     callbacks.callAvailable(ros::WallDuration(wait_s));
@@ -208,13 +208,23 @@ void SimulationNode::WaitForLockstepPublishers() {
            answer_topic.c_str(), state_topic.c_str(), settings_.lockstep.timeout_s);
 }
 
-std::uint64_t SimulationNode::PublishCycle() {
+void SimulationNode::PublishCycle() {
   const ros::Time stamp = Stamp();
   publisher_.Publish(world_, stamp);
-  const std::uint64_t hash = core::StateHash(world_);
-  diagnostics_.RecordPublishedState(hash, stamp);
-  if (lockstep_) lockstep_->Open(stamp, Clock::now());
-  return hash;
+  const Clock::time_point now = Clock::now();
+  // The wall time to the next cycle, when paced; unpaced, the first cycle
+  // once the report is due.
+  const Clock::duration cycle_wall_time =
+      pacer_.paced() ? std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                           static_cast<double>(publish_every_steps_) / settings_.rate_hz /
+                           settings_.real_time_factor))
+                     : Clock::duration::zero();
+  if (now + cycle_wall_time >= next_report_) {
+    std::vector<double> values;
+    core::StateHashValues(world_, &values);
+    state_hashes_.Submit(std::move(values), stamp);
+  }
+  if (lockstep_) lockstep_->Open(stamp, now);
 }
 
 void SimulationNode::PassLockstepGate(Clock::time_point now) {
@@ -337,7 +347,10 @@ std::uint64_t SimulationNode::StepWhilePaused(std::uint32_t steps) {
   // The cycle lockstep waits at is left without its answers: they come late.
   if (lockstep_ && lockstep_->open()) lockstep_->Close(false);
   for (std::uint32_t i = 0; i < steps; ++i) StepOnce(i + 1 == steps);
-  return PublishCycle();
+  PublishCycle();
+  const std::uint64_t hash = core::StateHash(world_);
+  state_hashes_.Set(hash, Stamp());  // the paused state, in the next report
+  return hash;
 }
 
 bool SimulationNode::OnStep(Step::Request& request, Step::Response& response) {

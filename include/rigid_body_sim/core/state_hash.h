@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "rigid_body_sim/core/world.h"
 
@@ -24,6 +25,13 @@ class Fnv1a64 {
   std::uint64_t hash_ = 0xcbf29ce484222325ULL;  // the FNV-1a 64 offset basis
 };
 
+// The values the hash covers, 13 per body in scene order.
+constexpr std::size_t kStateHashValuesPerBody = 13;
+void StateHashValues(const World& world, std::vector<double>* values);
+std::uint64_t HashOfValues(const std::vector<double>& values);
+
+// HashOfValues of StateHashValues: about 2 ns per byte hashed, 0.2 ms at
+// 1,000 bodies (FNV-1a is one multiply per byte, in sequence).
 std::uint64_t StateHash(const World& world);
 // 16 lower-case hexadecimal digits.
 std::string HashHex(std::uint64_t hash);

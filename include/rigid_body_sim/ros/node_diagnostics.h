@@ -5,7 +5,6 @@
 
 #include <chrono>
 #include <cstdint>
-#include <string>
 #include <vector>
 
 #include <diagnostic_updater/diagnostic_updater.h>
@@ -17,6 +16,7 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/body_topics.h"
 #include "rigid_body_sim/ros/lockstep_gate.h"
+#include "rigid_body_sim/ros/state_hash_worker.h"
 #include "rigid_body_sim/ros/log_thread.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
@@ -34,7 +34,7 @@ class NodeDiagnostics {
   NodeDiagnostics(const ros::NodeHandle& private_nh, const NodeSettings& settings,
                   const core::World& world, const core::StepPacer& pacer,
                   const WrenchIntake& intake, const BodyTopics& body_topics,
-                  const LockstepGate* lockstep);
+                  const LockstepGate* lockstep, const StateHashWorker& state_hashes);
 
   // Stepping starts now, at the world's current time.
   void Start(Clock::time_point now);
@@ -44,9 +44,6 @@ class NodeDiagnostics {
   // Closes the report window: the status line (at ~status_period) and
   // /diagnostics.
   void Report(Clock::time_point now, const ros::Time& stamp, bool paused);
-
-  // A cycle was published: its stamp and state hash (core::StateHash).
-  void RecordPublishedState(std::uint64_t state_hash, const ros::Time& stamp);
 
   // Events that change what the conservation drifts are measured against.
   void OnWrenchHeld(std::size_t body) { conservation_.MarkLoaded(body); }
@@ -77,6 +74,7 @@ class NodeDiagnostics {
   const WrenchIntake& intake_;
   const BodyTopics& body_topics_;
   const LockstepGate* lockstep_;
+  const StateHashWorker& state_hashes_;
   core::ConservationMonitor conservation_;
   const std::size_t sweep_per_step_;  // bodies the conservation sweep measures per step
   diagnostic_updater::Updater updater_;
@@ -94,8 +92,6 @@ class NodeDiagnostics {
   std::uint64_t overruns_at_last_status_ = 0;  // for the status line's count
   std::uint64_t lockstep_timeouts_at_last_report_ = 0;
   bool lockstep_timed_out_ = false;  // in the last report window
-  std::string state_hash_;           // of the last published cycle; empty before the first
-  ros::Time state_hash_stamp_;
   Clock::time_point next_status_{};
 };
 

@@ -42,6 +42,7 @@
 #include "rigid_body_sim/ros/node_diagnostics.h"
 #include "rigid_body_sim/ros/runtime_config.h"
 #include "rigid_body_sim/ros/scene_params.h"
+#include "rigid_body_sim/ros/state_hash_worker.h"
 #include "rigid_body_sim/ros/state_publisher.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
 
@@ -67,9 +68,10 @@ class SimulationNode {
   void WaitForLockstepPublishers();
   // One step; `publishes_after` when its state will be published.
   void StepOnce(bool publishes_after);
-  // Publishes the current state as a cycle, records its state hash for
-  // diagnostics and, under lockstep, waits at it for answers. Returns the hash.
-  std::uint64_t PublishCycle();
+  // Publishes the current state as a cycle and, under lockstep, waits at it
+  // for answers. The cycle before each diagnostics report is hashed (by
+  // state_hashes_).
+  void PublishCycle();
   // Under lockstep: leaves the open cycle once all have answered or its
   // timeout has passed (with a warning and a count).
   void PassLockstepGate(Clock::time_point now);
@@ -81,7 +83,7 @@ class SimulationNode {
   // Why a ~step or ~step_with_wrenches request cannot run, if it cannot.
   std::optional<std::string> StepRefusal(std::uint32_t steps) const;
   // Those steps, without waiting for controllers, then the state published;
-  // returns its hash.
+  // returns its state hash.
   std::uint64_t StepWhilePaused(std::uint32_t steps);
   void Hold(const core::ParticleWrench& wrench);
 
@@ -110,11 +112,13 @@ class SimulationNode {
   WrenchIntake intake_;
   StatePublisher publisher_;
   std::optional<LockstepGate> lockstep_;  // with ~lockstep only
+  StateHashWorker state_hashes_;
   NodeDiagnostics diagnostics_;
   bool paused_ = false;
   const core::TimeLattice lattice_;
   std::int64_t first_index_ = 0;  // K0: t_0's lattice point; the world counts from 0
   ros::Time start_stamp_;         // t_0
+  Clock::time_point next_report_{};
   LogThrottle lockstep_warnings_{1.0};
   ros::NodeHandle private_nh_;
   std::vector<ros::Subscriber> subscribers_;
