@@ -54,6 +54,7 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
       faults_(models_.size(), BodyFault::kNone),
       one_step_momentum_sq_(models_.size(), 0.0) {
   if (!(options_.dt_s > 0.0)) throw std::invalid_argument("dt must be > 0");
+  if (options_.threads < 1) throw std::invalid_argument("threads must be >= 1");
   if (states_.size() != models_.size() || properties_.size() != models_.size()) {
     throw std::invalid_argument("one initial state and one set of properties per body is required");
   }
@@ -63,10 +64,14 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
     body_index_.emplace(models_[i].name(), i);
   }
   has_gravity_ = !options_.gravity.isZero(0.0);
-  free_batch_.reserve(kBatch);
-  free_batch_before_.reserve(kBatch);
-  loaded_batch_.reserve(kBatch);
-  loaded_batch_before_.reserve(kBatch);
+  blocks_.resize(options_.threads);
+  for (Block& block : blocks_) {
+    block.free_batch.reserve(kBatch);
+    block.free_batch_before.reserve(kBatch);
+    block.loaded_batch.reserve(kBatch);
+    block.loaded_batch_before.reserve(kBatch);
+  }
+  team_ = std::make_unique<ThreadTeam>(options_.threads);
 }
 
 void World::CheckBody(std::size_t i) const {
@@ -210,8 +215,26 @@ void World::Step() {
   last_step_recorded_ = record_next_step_;
   record_next_step_ = false;
   if (last_step_recorded_) RecordStepStart();
+  const std::size_t bodies = models_.size();
+  const std::size_t count = blocks_.size();
+  auto step_block = [this, bodies, count](std::size_t block) {
+    StepBlock(bodies * block / count, bodies * (block + 1) / count, &blocks_[block]);
+  };
+  team_->Run(step_block);
   last_step_substeps_max_ = 1;
-  for (std::size_t i = 0; i < models_.size(); ++i) {
+  for (const Block& block : blocks_) {
+    frozen_count_ += block.frozen;
+    dropped_couples_ += block.dropped_couples;
+    last_step_substeps_max_ = std::max(last_step_substeps_max_, block.substeps_max);
+  }
+  ++steps_;
+}
+
+void World::StepBlock(std::size_t begin, std::size_t end, Block* block) {
+  block->frozen = 0;
+  block->dropped_couples = 0;
+  block->substeps_max = 1;
+  for (std::size_t i = begin; i < end; ++i) {
     if (faults_[i] != BodyFault::kNone) continue;
     const BodyModel& model = models_[i];
     BodyState& state = states_[i];
@@ -225,35 +248,34 @@ void World::Step() {
     const std::uint32_t substeps = reach_sq <= one_step_momentum_sq_[i] ? 1 : SubstepsFor(i, state);
     if (substeps == 0) {
       const BodyFault fault = CheckState(model, state);  // a NaN state set from outside
-      Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased);
+      Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased, block);
       continue;
     }
     if (substeps == 1 && model.is_full_rank()) {
       if (loaded_[i]) {
-        loaded_batch_.push_back(i);
-        loaded_batch_before_.push_back(state);
-        if (loaded_batch_.size() == kBatch) StepLoadedBatch();
+        block->loaded_batch.push_back(i);
+        block->loaded_batch_before.push_back(state);
+        if (block->loaded_batch.size() == kBatch) StepLoadedBatch(block);
       } else {
-        free_batch_.push_back(i);
-        free_batch_before_.push_back({state.position, state.orientation});
-        if (free_batch_.size() == kBatch) StepFreeBatch();
+        block->free_batch.push_back(i);
+        block->free_batch_before.push_back({state.position, state.orientation});
+        if (block->free_batch.size() == kBatch) StepFreeBatch(block);
       }
       continue;
     }
     if (loaded_[i] && !model.is_full_rank() &&
         loads_[i].DroppedTorque(state.orientation.toRotationMatrix()) > kDroppedCoupleTolerance_Nm) {
-      ++dropped_couples_;
+      ++block->dropped_couples;
     }
-    last_step_substeps_max_ = std::max(last_step_substeps_max_, substeps);
+    block->substeps_max = std::max(block->substeps_max, substeps);
     const BodyState before = state;
     const Load* load = loaded_[i] ? &loads_[i] : nullptr;
     const double h = options_.dt_s / substeps;
     for (std::uint32_t k = 0; k < substeps; ++k) integrator_->Step(model, load, h, &state);
-    FinishStep(i, before);
+    FinishStep(i, before, block);
   }
-  StepFreeBatch();
-  StepLoadedBatch();
-  ++steps_;
+  StepFreeBatch(block);
+  StepLoadedBatch(block);
 }
 
 void World::RecordStepStart() {
@@ -270,33 +292,33 @@ void World::RecordStepStart() {
   }
 }
 
-void World::StepLoadedBatch() {
-  if (loaded_batch_.empty()) return;
-  integrator_->StepLoaded(models_, loaded_batch_, loads_, options_.dt_s, &states_);
-  for (std::size_t k = 0; k < loaded_batch_.size(); ++k) {
-    FinishStep(loaded_batch_[k], loaded_batch_before_[k]);
+void World::StepLoadedBatch(Block* block) {
+  if (block->loaded_batch.empty()) return;
+  integrator_->StepLoaded(models_, block->loaded_batch, loads_, options_.dt_s, &states_);
+  for (std::size_t k = 0; k < block->loaded_batch.size(); ++k) {
+    FinishStep(block->loaded_batch[k], block->loaded_batch_before[k], block);
   }
-  loaded_batch_.clear();
-  loaded_batch_before_.clear();
+  block->loaded_batch.clear();
+  block->loaded_batch_before.clear();
 }
 
-void World::StepFreeBatch() {
-  if (free_batch_.empty()) return;
-  integrator_->StepFree(models_, free_batch_, options_.dt_s, &states_);
-  for (std::size_t k = 0; k < free_batch_.size(); ++k) {
-    BodyState& state = states_[free_batch_[k]];
+void World::StepFreeBatch(Block* block) {
+  if (block->free_batch.empty()) return;
+  integrator_->StepFree(models_, block->free_batch, options_.dt_s, &states_);
+  for (std::size_t k = 0; k < block->free_batch.size(); ++k) {
+    BodyState& state = states_[block->free_batch[k]];
     const BodyFault fault = CheckPose(state);
     if (fault != BodyFault::kNone) {
-      state.position = free_batch_before_[k].position;
-      state.orientation = free_batch_before_[k].orientation;
-      Freeze(free_batch_[k], fault);
+      state.position = block->free_batch_before[k].position;
+      state.orientation = block->free_batch_before[k].orientation;
+      Freeze(block->free_batch[k], fault, block);
     }
   }
-  free_batch_.clear();
-  free_batch_before_.clear();
+  block->free_batch.clear();
+  block->free_batch_before.clear();
 }
 
-void World::FinishStep(std::size_t body, const BodyState& before) {
+void World::FinishStep(std::size_t body, const BodyState& before, Block* block) {
   const BodyModel& model = models_[body];
   BodyState& state = states_[body];
   if (!model.is_full_rank()) {
@@ -307,13 +329,13 @@ void World::FinishStep(std::size_t body, const BodyState& before) {
   const BodyFault fault = CheckState(model, state);
   if (fault != BodyFault::kNone) {
     state = before;
-    Freeze(body, fault);
+    Freeze(body, fault, block);
   }
 }
 
-void World::Freeze(std::size_t body, BodyFault fault) {
+void World::Freeze(std::size_t body, BodyFault fault, Block* block) {
   faults_[body] = fault;
-  ++frozen_count_;
+  ++block->frozen;
 }
 
 void World::Reset() {
