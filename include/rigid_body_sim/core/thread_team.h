@@ -4,6 +4,8 @@
 // under one mutex only where a round starts and ends.
 #pragma once
 
+#include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <cstddef>
 #include <cstdint>
@@ -32,6 +34,23 @@ class ThreadTeam {
     RunErased(&work, [](void* erased, std::size_t member) { (*static_cast<Work*>(erased))(member); });
   }
 
+  // Calls work(member, begin, end) for the contiguous blocks [begin, end) of
+  // `chunk` items (the last one shorter) that cover [0, items), each block
+  // taken by whichever member is free first, so that a member slowed by
+  // other processes or by costlier items does less of the work.
+  template <typename Work>
+  void ForBlocks(std::size_t items, std::size_t chunk, Work& work) {
+    next_block_.store(0, std::memory_order_relaxed);  // Run's mutex publishes it
+    auto take_blocks = [&](std::size_t member) {
+      for (;;) {
+        const std::size_t begin = chunk * next_block_.fetch_add(1, std::memory_order_relaxed);
+        if (begin >= items) return;
+        work(member, begin, std::min(begin + chunk, items));
+      }
+    };
+    Run(take_blocks);
+  }
+
  private:
   using Call = void (*)(void* work, std::size_t member);
   void RunErased(void* work, Call call);
@@ -47,6 +66,7 @@ class ThreadTeam {
   std::uint64_t round_ = 0;  // rounds started
   std::size_t running_ = 0;  // team threads still in this round
   bool stopping_ = false;
+  std::atomic<std::size_t> next_block_{0};  // ForBlocks' next block to take
   std::vector<std::thread> threads_;  // last: started once the rest exists
 };
 

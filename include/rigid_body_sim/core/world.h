@@ -32,9 +32,9 @@ struct WorldOptions {
   // A body whose step leaves the scheme's accurate range takes up to this
   // many substeps of dt/n instead; beyond it, it is frozen (kSpinAliased).
   std::uint32_t max_substeps = 1000;
-  // Threads that step the bodies, >= 1: each steps a contiguous block of them
-  // (the calling thread the first). A body's step reads and writes that body
-  // alone, so the states are the same for any count.
+  // Threads that step the bodies, >= 1 (the calling thread one of them): each
+  // takes contiguous blocks of them in turn. A body's step reads and writes
+  // that body alone, so the states are the same for any count.
   std::size_t threads = 1;
 };
 
@@ -145,14 +145,15 @@ class World {
   std::vector<StepRecord> step_records_;
   std::vector<char> step_record_valid_;  // per body: stepped since Reset / SetBodyState
 
-  // One thread's share of a Step: its batches, and what it counts, added to
-  // the World's counts once every block is done. Aligned to a cache line so
-  // that the threads' counts do not share one.
   struct Pose {
     Eigen::Vector3d position;
     Eigen::Quaterniond orientation;
   };
-  struct alignas(64) Block {
+  // One thread's share of a Step: its batches, and what it counts over the
+  // blocks of bodies it takes, added to the World's counts once every block
+  // is done. Aligned to a cache line so that the threads' counts do not
+  // share one.
+  struct alignas(64) Share {
     // Free bodies (full rank, moving, no load) of this step, stepped in
     // batches through Integrator::StepFree, and their poses before it (a free
     // step changes nothing else).
@@ -166,13 +167,13 @@ class World {
     std::uint64_t dropped_couples = 0;
     std::uint32_t substeps_max = 1;
   };
-  // Steps the bodies [begin, end) that move; `block` starts its counts at 0.
-  void StepBlock(std::size_t begin, std::size_t end, Block* block);
+  // Steps the bodies [begin, end) that move, adding to `share`'s counts.
+  void StepBlock(std::size_t begin, std::size_t end, Share* share);
   // After a body's step: L projected into the range of a rank-deficient I,
   // then the CheckState bounds (a body that breaks one gets `before` back and
   // is frozen).
-  void FinishStep(std::size_t body, const BodyState& before, Block* block);
-  void Freeze(std::size_t body, BodyFault fault, Block* block);
+  void FinishStep(std::size_t body, const BodyState& before, Share* share);
+  void Freeze(std::size_t body, BodyFault fault, Share* share);
   // The constructor's checks of body i: a name no other body has, its
   // properties and its initial state; throws std::invalid_argument.
   void CheckBody(std::size_t i) const;
@@ -180,11 +181,11 @@ class World {
   void PrepareBody(std::size_t i);
   // Undoes the appends of AddBody.
   void RemoveLast();
-  // Steps the bodies in block->free_batch through StepFree, checks each, and
+  // Steps the bodies in share->free_batch through StepFree, checks each, and
   // empties it.
-  void StepFreeBatch(Block* block);
-  // The same for block->loaded_batch through StepLoaded.
-  void StepLoadedBatch(Block* block);
+  void StepFreeBatch(Share* share);
+  // The same for share->loaded_batch through StepLoaded.
+  void StepLoadedBatch(Share* share);
 
   std::vector<BodyModel> models_;
   std::vector<BodyState> initial_states_;
@@ -202,7 +203,7 @@ class World {
   // Per body, the |L|² below which a free body needs no substep (the cheap
   // bound of SubstepsFor, squared), so the common case costs one compare.
   std::vector<double> one_step_momentum_sq_;
-  std::vector<Block> blocks_;  // one per thread
+  std::vector<Share> shares_;  // one per thread, indexed as ThreadTeam members
   // Behind a pointer, so that a World can move.
   std::unique_ptr<ThreadTeam> team_;
   std::size_t frozen_count_ = 0;
