@@ -1,7 +1,8 @@
 // Throughput of World::Step (time per body-step) for every integrator at 1,
 // 1,000 and 100,000 bodies, torque-free and with particle forces; what the
-// skips save (bodies at rest, isotropic bodies, no wrench); and the cost of
-// per-particle output. Counters are seconds per body-step ("n" = ns).
+// skips save (bodies at rest, isotropic bodies, no wrench); 100,000 bodies
+// stepped by 1 and 2 threads; and the cost of per-particle output. Counters
+// are seconds per body-step ("n" = ns).
 #include <string>
 #include <vector>
 
@@ -20,7 +21,7 @@ namespace {
 enum class Motion { kTumbling, kAtRest };
 
 World MakeWorld(const std::string& integrator, int bodies, bool forced,
-                Motion motion = Motion::kTumbling, bool cubes = false) {
+                Motion motion = Motion::kTumbling, bool cubes = false, std::size_t threads = 1) {
   std::vector<BodyModel> models;
   std::vector<BodyState> states(bodies);
   models.reserve(bodies);
@@ -32,6 +33,7 @@ World MakeWorld(const std::string& integrator, int bodies, bool forced,
   }
   WorldOptions options;
   options.integrator = integrator;
+  options.threads = threads;
   World world(std::move(models), std::move(states), options);
   if (forced) {
     for (int i = 0; i < bodies; ++i) {
@@ -148,6 +150,25 @@ void BM_WorldStepLoaded(benchmark::State& state, LoadKind kind) {
 BENCHMARK_CAPTURE(BM_WorldStepLoaded, world_force, LoadKind::kWorldForce)->Arg(1000);
 BENCHMARK_CAPTURE(BM_WorldStepLoaded, body_force, LoadKind::kBodyForce)->Arg(1000);
 BENCHMARK_CAPTURE(BM_WorldStepLoaded, gravity, LoadKind::kGravity)->Arg(1000);
+
+// 100,000 tumbling boxes, torque-free or each pushed at one particle (half in
+// world, half in body axes), stepped by 1 and by 2 threads (WorldOptions::
+// threads). The counter is wall-clock time; the CPU column is the whole
+// process's, so that 2 threads with the CPU time of 1 show the work split
+// without overhead even where other processes share the cores.
+void BM_WorldStepThreads(benchmark::State& state, bool forced) {
+  const int bodies = static_cast<int>(state.range(0));
+  const auto threads = static_cast<std::size_t>(state.range(1));
+  World world = MakeWorld(kDefaultIntegrator, bodies, forced, Motion::kTumbling, false, threads);
+  TimeSteps(&world, &state);
+  ReportPerBodyStep(bodies, &state);
+}
+BENCHMARK_CAPTURE(BM_WorldStepThreads, free, false)
+    ->Args({100000, 1})->Args({100000, 2})->UseRealTime()->MeasureProcessCPUTime()
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_WorldStepThreads, forced, true)
+    ->Args({100000, 1})->Args({100000, 2})->UseRealTime()->MeasureProcessCPUTime()
+    ->Unit(benchmark::kMillisecond);
 
 // The worst step the default ~max_substeps allows at 10,000 bodies: 10,000
 // tumbling boxes and one more, pushed in body axes, spinning so fast that it

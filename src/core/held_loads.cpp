@@ -72,6 +72,7 @@ void HeldLoads::SetDamping(double linear_per_s, double angular_per_s) {
     throw std::invalid_argument("damping rates must be finite and >= 0 [1/s]");
   }
   damping_ = {linear_per_s, angular_per_s};
+  has_damping_ = linear_per_s > 0.0 || angular_per_s > 0.0;
 }
 
 double HeldLoads::DroppedTorque(const Eigen::Matrix3d& rotation) const {
@@ -91,15 +92,12 @@ double HeldLoads::NewTorqueBound() const {
   return torque_bound_;
 }
 
-const HeldLoads::PrincipalParts& HeldLoads::InPrincipalFrame(
+const HeldLoads::PrincipalParts& HeldLoads::NewPrincipalParts(
     const Eigen::Quaterniond& body_from_principal) const {
-  if (!has_principal_parts_ ||
-      !principal_parts_.body_from_principal.coeffs().cwiseEqual(body_from_principal.coeffs()).all()) {
-    const Eigen::Matrix3d r = body_from_principal.toRotationMatrix();
-    principal_parts_ = {body_from_principal, r.transpose() * force_body_, r.transpose() * torque_body_,
-                        force_moment_ * r};
-    has_principal_parts_ = true;
-  }
+  const Eigen::Matrix3d r = body_from_principal.toRotationMatrix();
+  principal_parts_ = {body_from_principal, r.transpose() * force_body_, r.transpose() * torque_body_,
+                      force_moment_ * r};
+  has_principal_parts_ = true;
   return principal_parts_;
 }
 

@@ -27,6 +27,8 @@ constexpr std::size_t kMaxNameLength = 128;
 constexpr double kMaxShards = 1024;
 // ~max_substeps above this would let one body stall the loop for seconds.
 constexpr double kMaxSubstepsLimit = 1e6;
+// ~threads above this is a mistyped value, not a machine.
+constexpr double kMaxThreads = 256;
 
 std::string FormatNumber(double value) {
   char text[32];
@@ -389,6 +391,12 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
                      FormatNumber(kMaxSubstepsLimit) + ", got " + FormatNumber(max_substeps));
   }
   settings.max_substeps = static_cast<std::uint32_t>(max_substeps);
+  const double threads = params.Number("threads", static_cast<double>(settings.threads));
+  if (threads < 1.0 || threads > kMaxThreads || threads != std::floor(threads)) {
+    throw SceneError("~threads must be a whole number from 1 to " + FormatNumber(kMaxThreads) +
+                     ", got " + FormatNumber(threads));
+  }
+  settings.threads = static_cast<std::size_t>(threads);
   settings.lockstep = ReadLockstep(params);
   settings.shard = ReadShard(params);
   return settings;

@@ -34,6 +34,7 @@ core::WorldOptions MakeWorldOptions(const NodeSettings& settings) {
   options.gravity = settings.gravity_mps2;
   options.wrench_timeout_s = settings.wrench_timeout_s;
   options.max_substeps = settings.max_substeps;
+  options.threads = settings.threads;
   return options;
 }
 

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <vector>
 
 #include <Eigen/Core>
@@ -44,6 +45,15 @@ inline BodyModel RodBody() {
 }
 
 inline BodyModel PointBody() { return BodyModel("point", {{2.0, {0.3, -0.1, 0.2}}}); }
+
+// Whether two states are the same bit for bit (== would let −0 pass for +0;
+// a memcmp of the structs would read their padding).
+inline bool SameBits(const BodyState& a, const BodyState& b) {
+  return std::memcmp(a.position.data(), b.position.data(), sizeof(double) * 3) == 0 &&
+         std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(), sizeof(double) * 4) == 0 &&
+         std::memcmp(a.linear_momentum.data(), b.linear_momentum.data(), sizeof(double) * 3) == 0 &&
+         std::memcmp(a.angular_momentum.data(), b.angular_momentum.data(), sizeof(double) * 3) == 0;
+}
 
 // Rotation angle of q_a⁻¹ q_b [rad].
 inline double AngleBetween(const Eigen::Quaterniond& a, const Eigen::Quaterniond& b) {

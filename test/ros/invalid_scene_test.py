@@ -231,6 +231,17 @@ class InvalidScene(unittest.TestCase):
         self.check_rejected('max_substeps_fractional',
                             {'max_substeps': 2.5, 'bodies': [good_body()]}, 'max_substeps')
 
+    def test_threads_zero(self):
+        self.check_rejected('threads_zero', {'threads': 0, 'bodies': [good_body()]}, 'threads')
+
+    def test_threads_fractional(self):
+        self.check_rejected('threads_fractional',
+                            {'threads': 1.5, 'bodies': [good_body()]}, 'threads')
+
+    def test_threads_not_a_number(self):
+        self.check_rejected('threads_not_a_number',
+                            {'threads': 'two', 'bodies': [good_body()]}, 'threads')
+
     def test_lockstep_without_publishers(self):
         self.check_rejected('lockstep_without_publishers',
                             {'lockstep': True, 'bodies': [good_body()]}, 'lockstep_publishers')

@@ -46,6 +46,7 @@ class HeldLoads final : public Load {
   Wrench At(double time_in_step_s, const Eigen::Matrix3d& rotation) const override;
   bool has_torque() const override { return has_torque_; }
   Damping damping() const override { return damping_; }
+  bool has_damping() const override { return has_damping_; }
   // Whether a body-axes force or couple was added.
   bool has_body_axes() const { return has_body_axes_; }
 
@@ -58,7 +59,14 @@ class HeldLoads final : public Load {
     Eigen::Vector3d torque_body;   // R_BPᵀ τ_B
     Eigen::Matrix3d force_moment;  // C R_BP
   };
-  const PrincipalParts& InPrincipalFrame(const Eigen::Quaterniond& body_from_principal) const;
+  const PrincipalParts& InPrincipalFrame(const Eigen::Quaterniond& body_from_principal) const {
+    // Inline, as the loaded lanes ask once per body and step and the parts
+    // are almost always kept.
+    return has_principal_parts_ &&
+                   principal_parts_.body_from_principal.coeffs().cwiseEqual(body_from_principal.coeffs()).all()
+               ? principal_parts_
+               : NewPrincipalParts(body_from_principal);
+  }
 
   // The reduced parts, for kernels that evaluate At themselves.
   const Eigen::Vector3d& force_world() const { return force_world_; }
@@ -70,6 +78,8 @@ class HeldLoads final : public Load {
  private:
   // Computes TorqueBound and keeps it until the loads change.
   double NewTorqueBound() const;
+  // Computes InPrincipalFrame and keeps it until the loads or the frame change.
+  const PrincipalParts& NewPrincipalParts(const Eigen::Quaterniond& body_from_principal) const;
   Eigen::Vector3d force_world_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d force_body_ = Eigen::Vector3d::Zero();
   Eigen::Vector3d torque_world_ = Eigen::Vector3d::Zero();
@@ -82,6 +92,7 @@ class HeldLoads final : public Load {
   mutable bool has_principal_parts_ = false;  // principal_parts_ holds for these loads
   bool has_torque_ = false;
   bool has_body_axes_ = false;
+  bool has_damping_ = false;  // a rate of damping_ is > 0
   bool projects_torque_ = false;
 };
 

@@ -31,7 +31,9 @@ class Load {
   virtual bool has_torque() const = 0;
   // The damping the integrators apply besides the wrench; none by default.
   virtual Damping damping() const { return {}; }
-  bool has_damping() const {
+  // Whether either rate of damping() is > 0. Virtual so that a load that
+  // keeps the answer (HeldLoads) spares the batched steps a look at the rates.
+  virtual bool has_damping() const {
     const Damping rates = damping();
     return rates.linear_per_s > 0.0 || rates.angular_per_s > 0.0;
   }

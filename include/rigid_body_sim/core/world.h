@@ -18,6 +18,7 @@
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/step_record.h"
+#include "rigid_body_sim/core/thread_team.h"
 #include "rigid_body_sim/core/wrench_table.h"
 
 namespace rigid_body_sim::core {
@@ -31,6 +32,10 @@ struct WorldOptions {
   // A body whose step leaves the scheme's accurate range takes up to this
   // many substeps of dt/n instead; beyond it, it is frozen (kSpinAliased).
   std::uint32_t max_substeps = 1000;
+  // Threads that step the bodies, >= 1 (the calling thread one of them): each
+  // takes contiguous blocks of them in turn. A body's step reads and writes
+  // that body alone, so the states are the same for any count.
+  std::size_t threads = 1;
 };
 
 // The angle [rad] a substep may turn through the parts of the motion that the
@@ -40,7 +45,8 @@ constexpr double kMaxSubstepAngle = 0.04;
 
 class World {
  public:
-  // Throws std::invalid_argument on an unknown integrator, dt <= 0, duplicate
+  // Throws std::invalid_argument on an unknown integrator, dt <= 0, threads
+  // < 1, duplicate
   // or empty body names, a states/models (or non-empty properties) size
   // mismatch, an initial state that CheckState rejects, or properties that
   // PropertiesError rejects, each named as "bodies[i] (name 'n'): ...".
@@ -67,7 +73,8 @@ class World {
   // and gravity, in SubstepsFor substeps. A body whose state would break a
   // CheckState bound, or that needs more than max_substeps, keeps its last
   // good state and is frozen from then on; the others go on. This is the
-  // only place that freezes a body.
+  // only place that freezes a body. With options().threads > 1 the blocks of
+  // bodies are stepped in parallel; the call returns when all are done.
   void Step();
 
   // How many substeps of dt/n `body` needs from `state` under its current
@@ -138,11 +145,35 @@ class World {
   std::vector<StepRecord> step_records_;
   std::vector<char> step_record_valid_;  // per body: stepped since Reset / SetBodyState
 
+  struct Pose {
+    Eigen::Vector3d position;
+    Eigen::Quaterniond orientation;
+  };
+  // One thread's share of a Step: its batches, and what it counts over the
+  // blocks of bodies it takes, added to the World's counts once every block
+  // is done. Aligned to a cache line so that the threads' counts do not
+  // share one.
+  struct alignas(64) Share {
+    // Free bodies (full rank, moving, no load) of this step, stepped in
+    // batches through Integrator::StepFree, and their poses before it (a free
+    // step changes nothing else).
+    std::vector<std::size_t> free_batch;
+    std::vector<Pose> free_batch_before;
+    // Loaded full-rank bodies that need no substeps, batched the same way
+    // through Integrator::StepLoaded, and their states before it.
+    std::vector<std::size_t> loaded_batch;
+    std::vector<BodyState> loaded_batch_before;
+    std::size_t frozen = 0;
+    std::uint64_t dropped_couples = 0;
+    std::uint32_t substeps_max = 1;
+  };
+  // Steps the bodies [begin, end) that move, adding to `share`'s counts.
+  void StepBlock(std::size_t begin, std::size_t end, Share* share);
   // After a body's step: L projected into the range of a rank-deficient I,
   // then the CheckState bounds (a body that breaks one gets `before` back and
   // is frozen).
-  void FinishStep(std::size_t body, const BodyState& before);
-  void Freeze(std::size_t body, BodyFault fault);
+  void FinishStep(std::size_t body, const BodyState& before, Share* share);
+  void Freeze(std::size_t body, BodyFault fault, Share* share);
   // The constructor's checks of body i: a name no other body has, its
   // properties and its initial state; throws std::invalid_argument.
   void CheckBody(std::size_t i) const;
@@ -150,11 +181,11 @@ class World {
   void PrepareBody(std::size_t i);
   // Undoes the appends of AddBody.
   void RemoveLast();
-  // Steps the bodies in free_batch_ through StepFree, checks each, and
+  // Steps the bodies in share->free_batch through StepFree, checks each, and
   // empties it.
-  void StepFreeBatch();
-  // The same for loaded_batch_ through StepLoaded.
-  void StepLoadedBatch();
+  void StepFreeBatch(Share* share);
+  // The same for share->loaded_batch through StepLoaded.
+  void StepLoadedBatch(Share* share);
 
   std::vector<BodyModel> models_;
   std::vector<BodyState> initial_states_;
@@ -172,19 +203,9 @@ class World {
   // Per body, the |L|² below which a free body needs no substep (the cheap
   // bound of SubstepsFor, squared), so the common case costs one compare.
   std::vector<double> one_step_momentum_sq_;
-  // Free bodies (full rank, moving, no load) of this step, stepped in
-  // batches through Integrator::StepFree, and their poses before it (a free
-  // step changes nothing else).
-  struct Pose {
-    Eigen::Vector3d position;
-    Eigen::Quaterniond orientation;
-  };
-  std::vector<std::size_t> free_batch_;
-  std::vector<Pose> free_batch_before_;
-  // Loaded full-rank bodies that need no substeps, batched the same way
-  // through Integrator::StepLoaded, and their states before it.
-  std::vector<std::size_t> loaded_batch_;
-  std::vector<BodyState> loaded_batch_before_;
+  std::vector<Share> shares_;  // one per thread, indexed as ThreadTeam members
+  // Behind a pointer, so that a World can move.
+  std::unique_ptr<ThreadTeam> team_;
   std::size_t frozen_count_ = 0;
   bool has_gravity_ = false;
   std::uint64_t steps_ = 0;

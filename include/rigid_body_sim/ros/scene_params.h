@@ -57,6 +57,8 @@ struct NodeSettings {
   // Most substeps of dt/n one body may take in a step (extension); the
   // default keeps one body's worst step under 1 ms at 10,000 bodies.
   std::uint32_t max_substeps = core::WorldOptions{}.max_substeps;
+  // Threads that step the bodies in parallel blocks (extension).
+  std::size_t threads = core::WorldOptions{}.threads;
   LockstepSettings lockstep;
   ShardSettings shard;
 };

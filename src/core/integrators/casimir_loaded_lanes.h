@@ -99,16 +99,25 @@ void StepLoadedInLanes(const std::vector<BodyModel>& models, const std::vector<s
     }
     pulled_count = 0;
   };
-  LoadedLanes turned;  // bodies under a load that depends on the orientation
-  std::size_t turned_bodies[kLanes];
-  std::size_t turned_count = 0;
-  const auto flush_turned = [&] {
+  // Bodies under a load that depends on the orientation, in four groups by
+  // whether they are damped and hold a body-axes part: the kernel instance a
+  // group runs then is the one each of its bodies calls for, so that a body's
+  // result does not depend on which bodies share its lanes (a damped
+  // instance rounds an undamped lane's kick differently), and so not on the
+  // batches or threads of the World.
+  constexpr std::size_t kGroups = 4;
+  LoadedLanes turned[kGroups];
+  std::size_t turned_bodies[kGroups][kLanes];
+  std::size_t turned_count[kGroups] = {};
+  const auto flush_turned = [&](std::size_t group) {
     if constexpr (kHasLoadedLanes) {
-      if (turned_count < kLanes) turned.FillIdle(turned_count);
-      loaded_lanes(dt_s, &turned);
-      for (std::size_t l = 0; l < turned_count; ++l) turned.Store(l, &(*states)[turned_bodies[l]]);
+      LoadedLanes& lanes = turned[group];
+      const std::size_t count = turned_count[group];
+      if (count < kLanes) lanes.FillIdle(count);
+      loaded_lanes(dt_s, &lanes);
+      for (std::size_t l = 0; l < count; ++l) lanes.Store(l, &(*states)[turned_bodies[group][l]]);
     }
-    turned_count = 0;
+    turned_count[group] = 0;
   };
   for (const std::size_t body : bodies) {
     const BodyModel& model = models[body];
@@ -121,15 +130,18 @@ void StepLoadedInLanes(const std::vector<BodyModel>& models, const std::vector<s
       if (pulled_count == kLanes) flush_pulled();
     } else if (kHasLoadedLanes && FitsLoadedLanes(model, state, load, dt_s) &&
                (!damped || DampingFitsLoadedLanes(load.damping(), dt_s))) {
-      turned.Load(turned_count, model, state, load);
-      turned_bodies[turned_count++] = body;
-      if (turned_count == kLanes) flush_turned();
+      const std::size_t group = (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
+      turned[group].Load(turned_count[group], model, state, load);
+      turned_bodies[group][turned_count[group]++] = body;
+      if (turned_count[group] == kLanes) flush_turned(group);
     } else {
       step_one(model, load, dt_s, &state);  // too fast for the lanes' series
     }
   }
   if (pulled_count > 0) flush_pulled();
-  if (turned_count > 0) flush_turned();
+  for (std::size_t group = 0; group < kGroups; ++group) {
+    if (turned_count[group] > 0) flush_turned(group);
+  }
 }
 
 }  // namespace rigid_body_sim::core
