@@ -43,6 +43,10 @@ class Peer {
   // loads held over each output would err by the hold, not by its tolerance,
   // and a closed form exists for the torque-free scenes only.
   virtual bool Handles(const Scene& /*scene*/) const { return true; }
+  // The smallest dt a fixed-step peer runs at [s]: the slowest engine stops
+  // where its error has reached round-off or the load hold, as its
+  // whole-scene runs at smaller dt would dominate the study's run time.
+  virtual double smallest_dt_s() const { return 0.0; }
 };
 
 // The output grid of the adaptive and closed-form peers [s].

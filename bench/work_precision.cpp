@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <iostream>
 #include <memory>
@@ -379,25 +380,36 @@ int main(int argc, char** argv) {
       }
       for (const std::unique_ptr<Peer>& peer : peers) {
         const bool on_output_grid = peer->stepping() != Peer::Stepping::kFixedStep;
-        if (!peer->Handles(scene) || (on_output_grid && dt != kOutputInterval_s)) continue;
-        FlipCounter flips;
-        peer->Setup(scene, 1, dt);
-        const long steps = StepCount(scene, dt);
-        if (track_flips) flips.Observe(peer->State(0), 0.0, dt);
-        for (long n = 0; n < steps; ++n) {
-          peer->Step();
-          if (track_flips) flips.Observe(peer->State(0), (n + 1) * dt, dt);
+        if (!peer->Handles(scene) || (on_output_grid && dt != kOutputInterval_s) ||
+            dt < peer->smallest_dt_s()) {
+          continue;
         }
-        const PeerState final_state = peer->State(0);
-        const double ns = on_output_grid
-                              ? TimePerOutput(*peer, scene)
+        FlipCounter flips;
+        Errors errors{NAN, NAN, NAN, NAN};
+        double ns = NAN;
+        // An engine whose step fails (throws) gets a row of NaN, as one that
+        // diverges does.
+        try {
+          peer->Setup(scene, 1, dt);
+          const long steps = StepCount(scene, dt);
+          if (track_flips) flips.Observe(peer->State(0), 0.0, dt);
+          for (long n = 0; n < steps; ++n) {
+            peer->Step();
+            if (track_flips) flips.Observe(peer->State(0), (n + 1) * dt, dt);
+          }
+          errors = Compare(model, peer->State(0), expected);
+          ns = on_output_grid ? TimePerOutput(*peer, scene)
                               : TimePerBodyStep(
                                     timed_steps, [&] { peer->Setup(scene, kTimedBodies, dt); },
                                     [&](long) { peer->Step(); });
+        } catch (const std::exception& failure) {
+          std::cerr << scene.name << ": " << peer->name() << " at dt " << dt << " failed: "
+                    << failure.what() << "\n";
+        }
         const std::string full = peer->name();
         const std::string engine = full.substr(0, full.find('_'));
-        WriteRow(csv, scene, engine, full, peer->stepping(), peer->tolerance(), dt,
-                 Compare(model, final_state, expected), ns, flips.times, reference);
+        WriteRow(csv, scene, engine, full, peer->stepping(), peer->tolerance(), dt, errors, ns,
+                 flips.times, reference);
       }
     }
   }
