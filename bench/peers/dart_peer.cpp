@@ -14,6 +14,8 @@
 //   v += dt a (Skeleton::integrateVelocities) and the pose along the new
 //   velocity by the SE(3) exponential (FreeJoint::integratePositions):
 //   semi-implicit (symplectic) Euler.
+// - A copy turning more than 1000 rad in a step has diverged: Step() throws
+//   (DART itself would abort on the non-finite pose that follows).
 // - Loads: BodyNode::addExtForce (world force at the body origin, the COM)
 //   and addExtTorque (world), from the pose at the start of the step; World::step
 //   clears them after each step (its default _resetCommand = true).
@@ -40,6 +42,8 @@ using dart::dynamics::Frame;
 
 class DartPeer final : public Peer {
  public:
+  static constexpr double kDivergedTurn_rad = 1e3;
+
   std::string name() const override { return "dart_semi_implicit"; }
 
   void Setup(const Scene& scene, int copies, double dt_s) override {
@@ -71,6 +75,14 @@ class DartPeer final : public Peer {
   }
 
   void Step() override {
+    // Debian's DART asserts on a non-finite pose, which would end the whole
+    // benchmark: a copy that turns more than kDivergedTurn_rad per step has
+    // diverged, and the step is refused with an exception instead.
+    for (const BodyNode* body : bodies_) {
+      if (!(body->getAngularVelocity().norm() * run_.dt_s < kDivergedTurn_rad)) {
+        throw std::runtime_error(name() + ": diverged");
+      }
+    }
     if (!run_.loads->empty()) {
       run_.loads->BeginStep(run_.step * run_.dt_s);
       for (BodyNode* body : bodies_) {
