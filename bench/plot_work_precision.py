@@ -28,8 +28,6 @@ for r in rows:
     # The order along a method's line: coarse to fine.
     r["coarseness"] = float(r["tolerance"]) if r["stepping"] == "adaptive" else float(r["dt_s"])
 scenes = list(dict.fromkeys(r["scene"] for r in rows))
-methods = list(dict.fromkeys(r["method"] for r in rows))
-colours = {m: plt.get_cmap("tab20")(i % 20) for i, m in enumerate(methods)}
 
 # Category: its legend title, line style and marker.
 CATEGORIES = {
@@ -42,6 +40,15 @@ CATEGORIES = {
 
 def category(r):
     return "ours" if r["engine"] == "rigid_body_sim" else r["stepping"]
+
+
+# Colours distinct within each category (the line style and marker tell the
+# categories apart): ten for ours, twenty for the peers.
+colours = {}
+for kind, palette, size in (("ours", "tab10", 10), ("fixed", "tab20", 20), ("adaptive", "Dark2", 8),
+                            ("closed_form", "Set1", 9)):
+    methods = list(dict.fromkeys(r["method"] for r in rows if category(r) == kind))
+    colours.update({m: plt.get_cmap(palette)(i % size) for i, m in enumerate(methods)})
 
 
 def draw(x_key, x_label, title, path, kept):
