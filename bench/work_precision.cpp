@@ -2,19 +2,25 @@
 // configuration found at build time, on the scenes of scene.cpp, for each dt.
 // Writes one CSV row per (scene, method, dt); plot_work_precision.py draws it.
 //
+// Adaptive peers and the closed form run on the 1 ms output grid only (the
+// row with dt = kOutputInterval_s), once per tolerance.
+//
 // usage: work_precision [output.csv] [--quick] [--ours] [--scenes a,b] [--methods a,b]
-//                       [--dts 0.1,0.01]
+//                       [--peers a,b] [--dts 0.1,0.01]
 //   --quick    dt ∈ {1e-2, 1e-3} only (a smoke run)
 //   --ours     our integrators only, no peer engine
-//   --scenes   only the named scenes; --methods only the named integrators
+//   --scenes   only the named scenes; --methods only the named integrators;
+//              --peers only the named peer configurations
 //   --dts      these dt instead of the full set
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <fstream>
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -149,6 +155,30 @@ double TimePerBodyStep(long max_steps, Reset reset, StepAll step_all) {
   return samples[samples.size() / 2];
 }
 
+// Adaptive and closed-form peers: ns per output, on one copy over the whole
+// scene. Their step sizes vary along the trajectory (and copies in one
+// system would share one step-size control), so a short sample from the
+// start would not represent them. The median of up to kTimingRepeats runs;
+// the slow ones stop repeating once kRepeatBudget_ns is spent.
+constexpr double kRepeatBudget_ns = 1e9;
+
+double TimePerOutput(Peer& peer, const Scene& scene) {
+  using Clock = std::chrono::steady_clock;
+  const long outputs = StepCount(scene, kOutputInterval_s);
+  std::vector<double> samples;
+  double spent_ns = 0.0;
+  while (samples.size() < std::size_t(kTimingRepeats) && spent_ns < kRepeatBudget_ns) {
+    peer.Setup(scene, 1, kOutputInterval_s);
+    const auto start = Clock::now();
+    for (long n = 0; n < outputs; ++n) peer.Step();
+    const double elapsed_ns = std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+    samples.push_back(elapsed_ns / double(outputs));
+    spent_ns += elapsed_ns;
+  }
+  std::nth_element(samples.begin(), samples.begin() + samples.size() / 2, samples.end());
+  return samples[samples.size() / 2];
+}
+
 double TimeOurs(const Scene& scene, const BodyModel& model, const std::string& integrator_name,
                 double dt, long steps) {
   if (RunsInWorld(scene)) {
@@ -237,18 +267,33 @@ Reference MakeReference(const Scene& scene, const BodyModel& model, const std::v
   return reference;
 }
 
+const char* SteppingName(Peer::Stepping stepping) {
+  switch (stepping) {
+    case Peer::Stepping::kFixedStep: return "fixed";
+    case Peer::Stepping::kAdaptive: return "adaptive";
+    case Peer::Stepping::kClosedForm: return "closed_form";
+  }
+  return "";
+}
+
+// One CSV row; ns is per body-step, per output for adaptive and closed-form
+// peers (one output every dt).
 void WriteRow(std::ofstream& csv, const Scene& scene, const std::string& engine,
-              const std::string& method, double dt, const Errors& e, double ns,
-              const std::vector<double>& flips, const Reference& reference) {
+              const std::string& method, Peer::Stepping stepping, std::optional<double> tolerance,
+              double dt, const Errors& e, double ns, const std::vector<double>& flips,
+              const Reference& reference) {
   std::string flip_columns = ",";
   if (!reference.flips.empty()) {
     double first_error = flips.empty() ? NAN : std::abs(flips[0] - reference.flips[0]);
     flip_columns = std::to_string(flips.size()) + "," + std::to_string(first_error);
   }
+  char tolerance_text[16] = "";
+  if (tolerance) std::snprintf(tolerance_text, sizeof tolerance_text, "%.0e", *tolerance);
   char line[512];
-  std::snprintf(line, sizeof line, "%s,%s,%s,%.0e,%.6e,%.6e,%.6e,%.6e,%.1f,%s\n",
-                scene.name.c_str(), engine.c_str(), method.c_str(), dt, e.orientation_rad,
-                e.position_m, e.energy_relative, e.momentum_relative, ns, flip_columns.c_str());
+  std::snprintf(line, sizeof line, "%s,%s,%s,%s,%s,%.0e,%.6e,%.6e,%.6e,%.6e,%.1f,%s\n",
+                scene.name.c_str(), engine.c_str(), method.c_str(), SteppingName(stepping),
+                tolerance_text, dt, e.orientation_rad, e.position_m, e.energy_relative,
+                e.momentum_relative, ns, flip_columns.c_str());
   csv << line;
   std::cout << line << std::flush;
 }
@@ -277,7 +322,7 @@ int main(int argc, char** argv) {
   using namespace rigid_body_sim::bench;
   std::string output = "bench/results/work_precision.csv";
   bool quick = false, ours_only = false;
-  std::vector<std::string> scene_names, method_names, dt_texts;
+  std::vector<std::string> scene_names, method_names, peer_names, dt_texts;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
@@ -285,6 +330,7 @@ int main(int argc, char** argv) {
     else if (arg == "--ours") ours_only = true;
     else if (arg == "--scenes" && has_value) scene_names = SplitList(argv[++i]);
     else if (arg == "--methods" && has_value) method_names = SplitList(argv[++i]);
+    else if (arg == "--peers" && has_value) peer_names = SplitList(argv[++i]);
     else if (arg == "--dts" && has_value) dt_texts = SplitList(argv[++i]);
     else output = arg;
   }
@@ -300,6 +346,9 @@ int main(int argc, char** argv) {
   std::vector<std::string> missing;
   std::vector<std::unique_ptr<Peer>> peers;
   if (!ours_only) peers = MakePeers(&missing);
+  peers.erase(std::remove_if(peers.begin(), peers.end(),
+                             [&](const std::unique_ptr<Peer>& peer) { return !Selected(peer_names, peer->name()); }),
+              peers.end());
   for (const std::string& name : missing) std::cerr << "work_precision: skipping " << name << "\n";
 
   std::ofstream csv(output);
@@ -307,7 +356,9 @@ int main(int argc, char** argv) {
     std::cerr << "work_precision: cannot write " << output << "\n";
     return 1;
   }
-  csv << "scene,engine,method,dt_s,orientation_error_rad,position_error_m,energy_rel_error,"
+  // stepping: fixed (a step of dt_s), adaptive (outputs dt_s apart at the
+  // solver's tolerance) or closed_form (the exact motion at outputs dt_s apart).
+  csv << "scene,engine,method,stepping,tolerance,dt_s,orientation_error_rad,position_error_m,energy_rel_error,"
          "momentum_rel_error,ns_per_body_step,flips,first_flip_error_s\n";
   for (const Scene& scene : WorkPrecisionScenes()) {
     if (!Selected(scene_names, scene.name)) continue;
@@ -324,24 +375,40 @@ int main(int argc, char** argv) {
         FlipCounter flips;
         const BodyState final_state = RunOurs(scene, model, name, dt, track_flips ? &flips : nullptr);
         const double ns = TimeOurs(scene, model, name, dt, timed_steps);
-        WriteRow(csv, scene, "rigid_body_sim", name, dt, Compare(model, final_state, expected),
-                 ns, flips.times, reference);
+        WriteRow(csv, scene, "rigid_body_sim", name, Peer::Stepping::kFixedStep, std::nullopt, dt,
+                 Compare(model, final_state, expected), ns, flips.times, reference);
       }
       for (const std::unique_ptr<Peer>& peer : peers) {
-        FlipCounter flips;
-        peer->Setup(scene, 1, dt);
-        const long steps = StepCount(scene, dt);
-        if (track_flips) flips.Observe(peer->State(0), 0.0, dt);
-        for (long n = 0; n < steps; ++n) {
-          peer->Step();
-          if (track_flips) flips.Observe(peer->State(0), (n + 1) * dt, dt);
+        const bool on_output_grid = peer->stepping() != Peer::Stepping::kFixedStep;
+        if (!peer->Handles(scene) || (on_output_grid && dt != kOutputInterval_s) ||
+            dt < peer->smallest_dt_s()) {
+          continue;
         }
-        const PeerState final_state = peer->State(0);
-        const double ns = TimePerBodyStep(
-            timed_steps, [&] { peer->Setup(scene, kTimedBodies, dt); }, [&](long) { peer->Step(); });
+        FlipCounter flips;
+        Errors errors{NAN, NAN, NAN, NAN};
+        double ns = NAN;
+        // An engine whose step fails (throws) gets a row of NaN, as one that
+        // diverges does.
+        try {
+          peer->Setup(scene, 1, dt);
+          const long steps = StepCount(scene, dt);
+          if (track_flips) flips.Observe(peer->State(0), 0.0, dt);
+          for (long n = 0; n < steps; ++n) {
+            peer->Step();
+            if (track_flips) flips.Observe(peer->State(0), (n + 1) * dt, dt);
+          }
+          errors = Compare(model, peer->State(0), expected);
+          ns = on_output_grid ? TimePerOutput(*peer, scene)
+                              : TimePerBodyStep(
+                                    timed_steps, [&] { peer->Setup(scene, kTimedBodies, dt); },
+                                    [&](long) { peer->Step(); });
+        } catch (const std::exception& failure) {
+          std::cerr << scene.name << ": " << peer->name() << " at dt " << dt << " failed: "
+                    << failure.what() << "\n";
+        }
         const std::string full = peer->name();
         const std::string engine = full.substr(0, full.find('_'));
-        WriteRow(csv, scene, engine, full, dt, Compare(model, final_state, expected), ns,
+        WriteRow(csv, scene, engine, full, peer->stepping(), peer->tolerance(), dt, errors, ns,
                  flips.times, reference);
       }
     }

@@ -1,7 +1,8 @@
-# The peer engines of the work-precision benchmark: finds MuJoCo, Bullet and
-# ODE as Debian packages them (scripts/bench.sh installs them), and builds
-# rigid_body_sim_bench_peers from bench/scene.cpp, the shared peer files and
-# the peers of the engines that were found, with RBS_HAVE_<ENGINE> defined for
+# The peer engines of the work-precision benchmark: finds MuJoCo, Bullet,
+# ODE, Simbody, DART and Boost.Odeint as Debian packages them
+# (scripts/bench.sh installs them), and builds rigid_body_sim_bench_peers
+# from bench/scene.cpp, the shared peer files, the closed-form peer and the
+# peers of the engines that were found, with RBS_HAVE_<ENGINE> defined for
 # each. A missing engine is not an error: its benchmark lines are skipped and
 # MakePeers names them. Needs the target rigid_body_sim_core.
 #
@@ -15,7 +16,8 @@ set(_rbs_peer_dir ${CMAKE_CURRENT_LIST_DIR}/../bench)
 set(_rbs_peer_sources
   ${_rbs_peer_dir}/scene.cpp
   ${_rbs_peer_dir}/peers/peer_loads.cpp
-  ${_rbs_peer_dir}/peers/make_peers.cpp)
+  ${_rbs_peer_dir}/peers/make_peers.cpp
+  ${_rbs_peer_dir}/peers/closed_form_peer.cpp)
 set(_rbs_peer_definitions)
 set(_rbs_peer_libraries)
 
@@ -66,6 +68,45 @@ if(RBS_ODE_FOUND)
   list(APPEND _rbs_peer_libraries PkgConfig::RBS_ODE)
 else()
   message(STATUS "bench: ODE not found (apt-get install libode-dev) - its lines are skipped")
+endif()
+
+# Simbody 3.7: SimbodyConfig.cmake, whose Simbody_LIBRARIES are imported targets.
+find_package(Simbody QUIET CONFIG)
+if(Simbody_FOUND)
+  message(STATUS "bench: Simbody found (${Simbody_VERSION})")
+  list(APPEND _rbs_peer_sources ${_rbs_peer_dir}/peers/simbody_peer.cpp)
+  list(APPEND _rbs_peer_definitions RBS_HAVE_SIMBODY)
+  add_library(rbs_bench_simbody INTERFACE)
+  target_include_directories(rbs_bench_simbody SYSTEM INTERFACE ${Simbody_INCLUDE_DIR})
+  target_link_libraries(rbs_bench_simbody INTERFACE ${Simbody_LIBRARIES})
+  list(APPEND _rbs_peer_libraries rbs_bench_simbody)
+else()
+  message(STATUS "bench: Simbody not found (apt-get install libsimbody-dev) - its lines are skipped")
+endif()
+
+# DART 6.12: DARTConfig.cmake with the imported target `dart` (dynamics and
+# simulation; no optional component is needed).
+find_package(DART 6 QUIET CONFIG)
+if(DART_FOUND)
+  message(STATUS "bench: DART found (${DART_VERSION})")
+  list(APPEND _rbs_peer_sources ${_rbs_peer_dir}/peers/dart_peer.cpp)
+  list(APPEND _rbs_peer_definitions RBS_HAVE_DART)
+  list(APPEND _rbs_peer_libraries dart)
+else()
+  message(STATUS "bench: DART not found (apt-get install libdart-dev) - its lines are skipped")
+endif()
+
+# Boost.Odeint: header-only, part of Boost's headers (libboost-dev).
+find_path(RBS_ODEINT_INCLUDE_DIR boost/numeric/odeint.hpp)
+if(RBS_ODEINT_INCLUDE_DIR)
+  message(STATUS "bench: Boost.Odeint found (${RBS_ODEINT_INCLUDE_DIR})")
+  list(APPEND _rbs_peer_sources ${_rbs_peer_dir}/peers/odeint_peer.cpp)
+  list(APPEND _rbs_peer_definitions RBS_HAVE_ODEINT)
+  add_library(rbs_bench_odeint INTERFACE)
+  target_include_directories(rbs_bench_odeint SYSTEM INTERFACE ${RBS_ODEINT_INCLUDE_DIR})
+  list(APPEND _rbs_peer_libraries rbs_bench_odeint)
+else()
+  message(STATUS "bench: Boost.Odeint not found (apt-get install libboost-dev) - its lines are skipped")
 endif()
 
 add_library(rigid_body_sim_bench_peers STATIC ${_rbs_peer_sources})

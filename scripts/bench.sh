@@ -1,6 +1,7 @@
 #!/bin/bash
 # The one bench command: installs what the benchmarks need (Google Benchmark,
-# matplotlib and the peer engines MuJoCo, Bullet and ODE from Debian), builds
+# matplotlib and the peer engines MuJoCo, Bullet, ODE, Simbody and DART from
+# Debian; Boost.Odeint comes with Boost's headers), builds
 # with -DRBS_BUILD_BENCH=ON and rewrites bench/results/ (CSVs and plots).
 # Pass --quick for a two-dt smoke run that writes to /tmp instead.
 set -euo pipefail
@@ -14,9 +15,11 @@ if [ "${1:-}" = "--quick" ]; then
   repetitions=1
   results="$(mktemp -d)"
 fi
-# The peer engines (MuJoCo 2.2.2, Bullet 3.24, ODE 0.16) and the plotting; the
-# bench builds without the engines too, and skips their lines.
-bash "$repo/scripts/install_deps.sh" libmujoco-dev libbullet-dev libode-dev pkg-config python3-matplotlib
+# The peer engines (MuJoCo 2.2.2, Bullet 3.24, ODE 0.16, Simbody 3.7, DART
+# 6.12) and the plotting; the bench builds without the engines too, and skips
+# their lines.
+bash "$repo/scripts/install_deps.sh" libmujoco-dev libbullet-dev libode-dev libsimbody-dev libdart-dev \
+  pkg-config python3-matplotlib
 # The node, the bench programs and wrench_flood (all of them with the option on).
 bash "$repo/scripts/build.sh" -DRBS_BUILD_BENCH=ON
 bin="$ws/devel/lib/rigid_body_sim"

@@ -15,6 +15,14 @@ void AddAll(const Names& names, Make make, std::vector<std::unique_ptr<Peer>>* p
   for (const char* name : names) peers->push_back(make(name));
 }
 
+template <typename Names, typename Tolerances, typename Make>
+void AddAtEachTolerance(const Names& names, const Tolerances& tolerances, Make make,
+                        std::vector<std::unique_ptr<Peer>>* peers) {
+  for (const char* name : names) {
+    for (double tolerance : tolerances) peers->push_back(make(name, tolerance));
+  }
+}
+
 template <typename Names>
 void MarkMissing(const Names& names, std::vector<std::string>* missing) {
   if (missing == nullptr) return;
@@ -41,6 +49,26 @@ std::vector<std::unique_ptr<Peer>> MakePeers(std::vector<std::string>* missing) 
 #else
   MarkMissing(kOdeConfigurations, missing);
 #endif
+#ifdef RBS_HAVE_SIMBODY
+  AddAll(kSimbodyConfigurations, MakeSimbodyPeer, &peers);
+  AddAtEachTolerance(kSimbodyAdaptiveConfigurations, kSimbodyAccuracies, MakeSimbodyAdaptivePeer, &peers);
+#else
+  MarkMissing(kSimbodyConfigurations, missing);
+  MarkMissing(kSimbodyAdaptiveConfigurations, missing);
+#endif
+#ifdef RBS_HAVE_DART
+  AddAll(kDartConfigurations, MakeDartPeer, &peers);
+#else
+  MarkMissing(kDartConfigurations, missing);
+#endif
+#ifdef RBS_HAVE_ODEINT
+  AddAll(kOdeintConfigurations, MakeOdeintPeer, &peers);
+  AddAtEachTolerance(kOdeintAdaptiveConfigurations, kOdeintTolerances, MakeOdeintAdaptivePeer, &peers);
+#else
+  MarkMissing(kOdeintConfigurations, missing);
+  MarkMissing(kOdeintAdaptiveConfigurations, missing);
+#endif
+  AddAll(kClosedFormConfigurations, MakeClosedFormPeer, &peers);
   return peers;
 }
 
