@@ -11,6 +11,7 @@
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
+#include "rigid_body_sim/core/state_hash.h"
 #include "rigid_body_sim/core/world.h"
 
 namespace rigid_body_sim::core {
@@ -169,6 +170,31 @@ BENCHMARK_CAPTURE(BM_WorldStepThreads, free, false)
 BENCHMARK_CAPTURE(BM_WorldStepThreads, forced, true)
     ->Args({100000, 1})->Args({100000, 2})->UseRealTime()->MeasureProcessCPUTime()
     ->Unit(benchmark::kMillisecond);
+
+// The node's state hash (FNV-1a 64 over 13 doubles a body, doc/node.md):
+// copying the values (what the stepping thread does) and hashing them (what
+// StateHashWorker does off that thread), per body.
+void BM_StateHashCopy(benchmark::State& state) {
+  const int bodies = static_cast<int>(state.range(0));
+  const World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, false, 1);
+  std::vector<double> values;
+  for (auto _ : state) {
+    StateHashValues(world, &values);
+    benchmark::DoNotOptimize(values.data());
+  }
+  ReportPerBodyStep(bodies, &state);
+}
+BENCHMARK(BM_StateHashCopy)->Arg(10000);
+
+void BM_StateHashFnv(benchmark::State& state) {
+  const int bodies = static_cast<int>(state.range(0));
+  const World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, false, 1);
+  std::vector<double> values;
+  StateHashValues(world, &values);
+  for (auto _ : state) benchmark::DoNotOptimize(HashOfValues(values));
+  ReportPerBodyStep(bodies, &state);
+}
+BENCHMARK(BM_StateHashFnv)->Arg(10000);
 
 // The worst step the default ~max_substeps allows at 10,000 bodies: 10,000
 // tumbling boxes and one more, pushed in body axes, spinning so fast that it

@@ -1,6 +1,6 @@
 // The state hash of a published cycle for diagnostics (doc/node.md, "State
-// hash"), computed by a thread of its own: FNV-1a takes about 2 ns per byte,
-// 2 ms at 10,000 bodies, longer than a step. The stepping thread only copies
+// hash"), computed by a thread of its own: FNV-1a takes about 1.2 ns per
+// byte, 1.2 ms at 10,000 bodies, four times a step. The stepping thread only copies
 // the hashed values (core::StateHashValues, 104 bytes per body) of the cycle
 // before each diagnostics report.
 #pragma once
