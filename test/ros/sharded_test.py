@@ -68,7 +68,12 @@ class Sharded(unittest.TestCase):
             for b1, b2 in zip(m1.bodies, m2.bodies):
                 rate = (b2.linear_momentum.x - b1.linear_momentum.x) / dt
                 self.assertAlmostEqual(rate, FORCES[b1.name], delta=1e-9, msg=b1.name)
+            # Diagnostics come once a second: wait for a report after the push.
+            deadline = time.monotonic() + 5.0
             diagnostics = self.clients[node].diagnostics()
+            while diagnostics.get('other_shard') == '0' and time.monotonic() < deadline:
+                time.sleep(0.2)
+                diagnostics = self.clients[node].diagnostics()
             self.assertEqual(diagnostics['other_shard'], '2', node)
             self.assertEqual(diagnostics['rejected_unknown_body'], '1', node)
             self.assertEqual(diagnostics['rejected_messages'], '1', node)
