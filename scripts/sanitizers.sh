@@ -9,6 +9,11 @@
 #   bash scripts/sanitizers.sh            # build -j2, then all tests
 #   RBS_JOBS=1 bash scripts/sanitizers.sh # build -j1
 #
+# All but one: Stress.RandomParticleForcesKeepEveryStateFinite (10^5 steps of
+# random forces on every scheme, 6.4 min under the sanitizers against 56 s
+# without) runs in scripts/test.sh only; the paths it takes are those of the
+# shorter core tests, which run here.
+#
 # Every instrumented process (gtest binaries, the node launched by rostest)
 # writes its reports to $ws/sanitizer_logs/ (ASAN_OPTIONS/UBSAN_OPTIONS
 # log_path), so a report is seen even when rostest keeps the node's stderr in
@@ -44,6 +49,7 @@ export ASAN_OPTIONS="detect_leaks=1:abort_on_error=0:halt_on_error=1:log_path=$l
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1:log_path=$logs/ubsan:log_exe_name=1"
 # Leaks inside the ROS libraries at exit (none of this package's code).
 export LSAN_OPTIONS="suppressions=$repo/scripts/lsan.supp:print_suppressions=0"
+export GTEST_FILTER="-Stress.RandomParticleForcesKeepEveryStateFinite"
 
 status=0
 catkin_make run_tests -j1 2>&1 | tee "$ws/run_tests.log" || status=1
