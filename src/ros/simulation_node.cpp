@@ -220,7 +220,8 @@ void SimulationNode::PublishCycle() {
                            static_cast<double>(publish_every_steps_) / settings_.rate_hz /
                            settings_.real_time_factor))
                      : Clock::duration::zero();
-  if (now + cycle_wall_time >= next_report_) {
+  // Paused, ~step hashes its state itself (StepWhilePaused).
+  if (!paused_ && now + cycle_wall_time >= next_report_) {
     std::vector<double> values;
     core::StateHashValues(world_, &values);
     state_hashes_.Submit(std::move(values), stamp);

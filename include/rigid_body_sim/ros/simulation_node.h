@@ -69,8 +69,8 @@ class SimulationNode {
   // One step; `publishes_after` when its state will be published.
   void StepOnce(bool publishes_after);
   // Publishes the current state as a cycle and, under lockstep, waits at it
-  // for answers. The cycle before each diagnostics report is hashed (by
-  // state_hashes_).
+  // for answers. While running, the cycle before each diagnostics report is
+  // hashed (by state_hashes_).
   void PublishCycle();
   // Under lockstep: leaves the open cycle once all have answered or its
   // timeout has passed (with a warning and a count).
