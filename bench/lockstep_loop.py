@@ -27,19 +27,14 @@ import sys
 import tempfile
 import time
 
-from node_harness import NODE_NAME, NS, REPO, Processes, add_workspace_argument, devel_program
+from node_harness import NODE_NAME, NS, Processes, add_node_bench_arguments, devel_program
 
 
 def parse_args():
     parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     parser.add_argument("--bodies", type=int, default=1, help="generated boxes in the scene (default 1)")
     parser.add_argument("--window", type=float, default=5.0, help="measuring window [s] (default 5)")
-    add_workspace_argument(parser)
-    parser.add_argument("--port", type=int, default=11398, help="port of the private ROS master")
-    parser.add_argument("--node-cpu", type=int, default=1, help="core the node is pinned to")
-    parser.add_argument("--bench-cpu", type=int, default=0, help="core of this script and the master")
-    parser.add_argument("--out", default=os.path.join(REPO, "bench", "results"),
-                        help="directory for lockstep_loop.md")
+    add_node_bench_arguments(parser, 11398, "lockstep_loop.md")
     return parser.parse_args()
 
 

@@ -8,6 +8,7 @@ the workspace and ROS_MASTER_URI first; the parts that need rospy import it
 when they are called.
 """
 
+import csv
 import os
 import shlex
 import signal
@@ -31,6 +32,33 @@ CLK_TCK = os.sysconf("SC_CLK_TCK")
 def add_workspace_argument(parser):
     parser.add_argument("--workspace", default=DEFAULT_WORKSPACE,
                         help="catkin workspace whose devel/setup.bash is sourced (default: .build_ws in the repo)")
+
+
+def add_node_bench_arguments(parser, port, results):
+    """The options of the benches that run a node on one core and themselves on another: --workspace,
+    --port (each bench its own default, so that they can run side by side), --node-cpu, --bench-cpu and
+    --out, the directory for `results`."""
+    add_workspace_argument(parser)
+    parser.add_argument("--port", type=int, default=port, help="port of the private ROS master")
+    parser.add_argument("--node-cpu", type=int, default=1, help="core the node is pinned to (taskset -c)")
+    parser.add_argument("--bench-cpu", type=int, default=0, help="core of this script and the master")
+    parser.add_argument("--out", default=os.path.join(REPO, "bench", "results"), help="directory for " + results)
+
+
+def write_results(out_dir, name, report, fields, rows):
+    """Writes report to <out_dir>/<name>.md and one CSV row per dict in rows to <name>.csv (floats to
+    6 significant digits, booleans as true/false); returns the two paths."""
+    os.makedirs(out_dir, exist_ok=True)
+    md_path, csv_path = (os.path.join(out_dir, name + ext) for ext in (".md", ".csv"))
+    with open(md_path, "w") as f:
+        f.write(report + "\n")
+    with open(csv_path, "w", newline="") as f:
+        writer = csv.DictWriter(f, fieldnames=fields, extrasaction="ignore")
+        writer.writeheader()
+        for row in rows:
+            writer.writerow({k: (("%.6g" % v) if isinstance(v, float) else
+                                 ("true" if v is True else "false" if v is False else v)) for k, v in row.items()})
+    return md_path, csv_path
 
 
 def reexec_in_workspace(workspace, port):

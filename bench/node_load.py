@@ -39,7 +39,6 @@ node runs on core 1 (--node-cpu). Everything started is stopped at the end.
 """
 
 import argparse
-import csv
 import io
 import json
 import math
@@ -52,8 +51,8 @@ import tempfile
 import threading
 import time
 
-from node_harness import (CLK_TCK, NODE_NAME, NS, REPO, CpuWindow, Diagnostics, Processes, add_workspace_argument,
-                          devel_program, proc_cpu_ticks, reexec_in_workspace, start_master)
+from node_harness import (CLK_TCK, NODE_NAME, NS, REPO, CpuWindow, Diagnostics, Processes, add_node_bench_arguments,
+                          devel_program, proc_cpu_ticks, reexec_in_workspace, start_master, write_results)
 
 
 def parse_args():
@@ -69,16 +68,11 @@ def parse_args():
                         help="run the ~step cost part (6); with no part flag, every part runs")
     parser.add_argument("--per-body-topics", choices=["true", "false"], default="true",
                         help="the scenes' ~per_body_topics (default true)")
-    add_workspace_argument(parser)
-    parser.add_argument("--port", type=int, default=11395, help="port of the private ROS master")
-    parser.add_argument("--node-cpu", type=int, default=1, help="core the node is pinned to (taskset -c)")
-    parser.add_argument("--bench-cpu", type=int, default=0, help="core of this script and the master")
+    add_node_bench_arguments(parser, 11395, "node_load.md and node_load.csv")
     parser.add_argument("--sched", choices=["normal", "nice", "fifo"], default=None,
                         help="node scheduling: normal; nice = nice -n -20 (also this script and the master); "
                              "fifo = chrt -f 10 (the script and master: nice -20). Default: fifo when root, "
                              "else normal")
-    parser.add_argument("--out", default=os.path.join(REPO, "bench", "results"),
-                        help="directory for node_load.md and node_load.csv")
     return parser.parse_args()
 
 
@@ -221,7 +215,7 @@ class NodeRun:
 
 ROWS = []
 CSV_FIELDS = ["part", "label", "n_bodies", "rate_hz", "publish_rate_hz", "subscribers", "entries_per_msg",
-              "msgs_hz", "attempt", "window_s", "integrator", "startup_s", "overruns", "overruns_per_s",
+              "msgs_hz", "window_s", "integrator", "startup_s", "overruns", "overruns_per_s",
               "floor_overruns", "floor_worst_us", "catch_up_limit_hits", "rtf_window", "rtf_min", "step_mean_us",
               "step_max_us", "cpu_percent",
               "core_other_percent", "loadavg1", "tf_msgs_per_s", "bodies_msgs_per_s", "rx_mbyte_per_s",
@@ -328,9 +322,9 @@ def push_every_body(run, n):
     return {"held_wrenches": held, "push_dv_dt_mps2": min(rates)}
 
 
-def capacity_run(diag, n, warmup, window, attempt, pushed=False):
+def capacity_run(diag, n, warmup, window, pushed=False):
     label = "pushed" if pushed else "capacity"
-    with NodeRun(diag, make_scene(n, 1000, 10), "%s_%d_%d" % (label, n, attempt)) as run:
+    with NodeRun(diag, make_scene(n, 1000, 10), "%s_%d" % (label, n)) as run:
         held = push_every_body(run, n) if pushed else {}
         r = run.measure(warmup, window)
     r.update(held)
@@ -345,7 +339,7 @@ def capacity_run(diag, n, warmup, window, attempt, pushed=False):
            r["rtf_min"], r["cpu_percent"], ARGS.node_cpu, r["core_other_percent"], r["loadavg1"],
            r["startup_s"], "pass" if passed else ("pass within noise" if load_ok else "FAIL")))
     return record(part=5 if pushed else 1, label=label, n_bodies=n, rate_hz=1000, publish_rate_hz=10,
-                  subscribers="none", attempt=attempt, passed=passed, load_ok=load_ok, **r)
+                  subscribers="none", passed=passed, load_ok=load_ok, **r)
 
 
 def part_capacity(diag, quick, budget_end, pushed=False):
@@ -359,11 +353,7 @@ def part_capacity(diag, quick, budget_end, pushed=False):
     strict = {}
 
     def run_n(n):
-        row = capacity_run(diag, n, warmup, window, 1, pushed)
-        if not row["passed"] and not quick and row["load_ok"]:
-            log("%s N=%d: overruns within noise; repeating once for a clean run" % (row["label"], n))
-            row2 = capacity_run(diag, n, warmup, window, 2, pushed)
-            row = row2 if row2["passed"] else row
+        row = capacity_run(diag, n, warmup, window, pushed)
         strict[n] = row["passed"]
         return row["load_ok"]
 
@@ -443,7 +433,7 @@ def part_cpu(diag, quick):
             % (n, r["cpu_percent"], r["tf_msgs_per_s"], r["bodies_msgs_per_s"], r["rx_mbyte_per_s"],
                r["overruns"], r["step_mean_us"], r["core_other_percent"], r["loadavg1"]))
         out.append(record(part=2, label="cpu", n_bodies=n, rate_hz=1000, publish_rate_hz=100,
-                          subscribers="/tf, ~bodies", attempt=1, passed=r["overruns"] == 0, **r))
+                          subscribers="/tf, ~bodies", passed=r["overruns"] == 0, **r))
     return out
 
 
@@ -546,7 +536,7 @@ def intake_run(diag, n_bodies, k, hz, warmup, window):
            r["wrenches_taken_per_s"], r["overruns"], r["rtf_min"], r["step_mean_us"], r["cpu_percent"],
            r["loadavg1"], "held" if held else "NOT held"))
     return record(part=3, label="wrench intake", n_bodies=n_bodies, rate_hz=1000, publish_rate_hz=100,
-                  subscribers="none", entries_per_msg=k, msgs_hz=hz, attempt=1, passed=held,
+                  subscribers="none", entries_per_msg=k, msgs_hz=hz, passed=held,
                   note="; ".join(notes), **r)
 
 
@@ -655,7 +645,7 @@ def latency_run(diag, publish_rate, trials):
         % (publish_rate, r["latency_median_ms"], r["latency_p90_ms"], r["latency_min_ms"],
            r["latency_max_ms"], n, bound, r["stamp_lag_median_ms"], r["loadavg1"]))
     return record(part=4, label="latency", n_bodies=1, rate_hz=1000, publish_rate_hz=publish_rate,
-                  subscribers="~bodies", attempt=1, passed=n >= trials * 0.9, **r)
+                  subscribers="~bodies", passed=n >= trials * 0.9, **r)
 
 
 def part_latency(diag, quick):
@@ -712,7 +702,7 @@ def part_step_cost(diag, quick):
                        ", ".join("%.1f" % w for w in walls), CORE_STEP_BENCHMARK, core, r["node_to_core"],
                        r["loadavg1"]))
     return record(part=6, label="step cost", n_bodies=STEP_COST_BODIES, rate_hz=1000, publish_rate_hz=10,
-                  subscribers="none", attempt=1, passed=r["node_to_core"] <= 1.2, **r)
+                  subscribers="none", passed=r["node_to_core"] <= 1.2, **r)
 
 
 # ------------------------------------------------------------------ report
@@ -741,11 +731,11 @@ def capacity_summary(kind, capacity):
 def capacity_table(part):
     rows = [r for r in ROWS if r["part"] == part]
     return md_table(
-        ["N bodies", "try", "window s", "overruns", "bare loop overruns", "overruns per publish cycle",
+        ["N bodies", "window s", "overruns", "bare loop overruns", "overruns per publish cycle",
          "catch-up hits",
          "step mean us", "ns per body-step", "step max us", "RTF min", "node CPU %", "core other %", "load avg",
          "first report s", "pass"],
-        [[r["n_bodies"], r["attempt"], r["window_s"], r["overruns"], r["floor_overruns"],
+        [[r["n_bodies"], r["window_s"], r["overruns"], r["floor_overruns"],
           "%.2f" % (r["overruns"] / (10.0 * r["window_s"])),
           r["catch_up_limit_hits"], r["step_mean_us"], 1e3 * r["step_mean_us"] / r["n_bodies"],
           r["step_max_us"], "%.3f" % r["rtf_min"], r["cpu_percent"], r["core_other_percent"],
@@ -817,7 +807,7 @@ def write_report(results, quick, elapsed):
                   "1 ms boundary, then busy for the run's mean step time, overruns counted as the node counts "
                   "them; it is what this shared virtual machine gives with no node at all. The scan stops at the "
                   "first size that fails beyond noise and "
-                  "bisects; a size that fails only within noise is repeated once; all attempts are listed. "
+                  "bisects. "
                   "\"core other\" = busy time of the node's core not used by the node (disturbance)."
                   % ("1" if quick else "3", NOISE_OVERRUNS_PER_S))
         md.append("")
@@ -938,16 +928,7 @@ def main():
     finally:
         elapsed = time.monotonic() - start
         report = write_report(results, quick, elapsed)
-        os.makedirs(ARGS.out, exist_ok=True)
-        md_path = os.path.join(ARGS.out, "node_load.md")
-        csv_path = os.path.join(ARGS.out, "node_load.csv")
-        with open(md_path, "w") as f:
-            f.write(report + "\n")
-        with open(csv_path, "w", newline="") as f:
-            writer = csv.DictWriter(f, fieldnames=CSV_FIELDS, extrasaction="ignore")
-            writer.writeheader()
-            for row in ROWS:
-                writer.writerow({k: (("%.6g" % v) if isinstance(v, float) else v) for k, v in row.items()})
+        md_path, csv_path = write_results(ARGS.out, "node_load", report, CSV_FIELDS, ROWS)
         print()
         print(report)
         print("written: %s, %s" % (md_path, csv_path))

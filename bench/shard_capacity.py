@@ -22,16 +22,14 @@ bench/results/shard_capacity.csv (one row per process per run).
 """
 
 import argparse
-import csv
 import math
 import os
 import subprocess
-import sys
 import tempfile
 import time
 
-from node_harness import (REPO, Diagnostics, Processes, add_workspace_argument, devel_program,
-                          reexec_in_workspace, start_master)
+from node_harness import (Diagnostics, Processes, add_node_bench_arguments, devel_program,
+                          reexec_in_workspace, start_master, write_results)
 
 
 def parse_args():
@@ -45,12 +43,7 @@ def parse_args():
                         help="bisect until the failing N is within this fraction of the passing one")
     parser.add_argument("--warmup", type=float, default=3.0, help="seconds before the window")
     parser.add_argument("--window", type=float, default=10.0, help="measuring window [s] (default 10)")
-    add_workspace_argument(parser)
-    parser.add_argument("--port", type=int, default=11399, help="port of the private ROS master")
-    parser.add_argument("--node-cpu", type=int, default=1, help="core of the single node")
-    parser.add_argument("--bench-cpu", type=int, default=0, help="core of this script and the master")
-    parser.add_argument("--out", default=os.path.join(REPO, "bench", "results"),
-                        help="directory for shard_capacity.md and .csv")
+    add_node_bench_arguments(parser, 11399, "shard_capacity.md and .csv")
     return parser.parse_args()
 
 
@@ -195,13 +188,7 @@ def main():
             "Sharded / one node: %.2f\n" % (CORES, time.monotonic() - start, ARGS.node_cpu, ARGS.bench_cpu,
                                            one[0], one[1], ARGS.shards, sharded[0], sharded[1], ratio))
     print(text)
-    os.makedirs(ARGS.out, exist_ok=True)
-    with open(os.path.join(ARGS.out, "shard_capacity.md"), "w") as f:
-        f.write(text)
-    with open(os.path.join(ARGS.out, "shard_capacity.csv"), "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=list(ROWS[0].keys()))
-        writer.writeheader()
-        writer.writerows(ROWS)
+    write_results(ARGS.out, "shard_capacity", text, list(ROWS[0].keys()), ROWS)
 
 
 if __name__ == "__main__":

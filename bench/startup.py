@@ -35,7 +35,6 @@ trial to bench/results/startup.csv.
 """
 
 import argparse
-import csv
 import json
 import math
 import os
@@ -48,7 +47,8 @@ import tempfile
 import threading
 import time
 
-from node_harness import NODE_NAME, NS, REPO, Processes, add_workspace_argument, devel_program, rss_kib
+from node_harness import (NODE_NAME, NS, REPO, Processes, add_node_bench_arguments, devel_program,
+                          rss_kib, write_results)
 
 
 def parse_args():
@@ -57,10 +57,7 @@ def parse_args():
     parser.add_argument("--publish-rate", type=float, default=100.0,
                         help="the scene's publish_rate [Hz] (default 100)")
     parser.add_argument("--trials", type=int, default=3, help="trials per per_body_topics value (default 3)")
-    add_workspace_argument(parser)
-    parser.add_argument("--port", type=int, default=11397, help="port of the private ROS master")
-    parser.add_argument("--node-cpu", type=int, default=1, help="core the node is pinned to (taskset -c)")
-    parser.add_argument("--bench-cpu", type=int, default=0, help="core of this script and the master")
+    add_node_bench_arguments(parser, 11397, "startup.md and startup.csv")
     parser.add_argument("--sched", choices=["normal", "fifo"], default="normal",
                         help="node scheduling: normal (default, as a user starts it), or fifo = chrt -f 10 "
                              "(see the README: at 10,000 bodies with both subscribers it starves roscpp's threads)")
@@ -72,8 +69,6 @@ def parse_args():
                         help="window after the start-up for overruns with nothing left to advertise [s]")
     parser.add_argument("--only", choices=["true", "false"], default=None,
                         help="run only this per_body_topics value")
-    parser.add_argument("--out", default=os.path.join(REPO, "bench", "results"),
-                        help="directory for startup.md and startup.csv")
     parser.add_argument("--one-trial", choices=["true", "false"], default=None, help=argparse.SUPPRESS)
     parser.add_argument("--log-dir", default=None, help=argparse.SUPPRESS)
     return parser.parse_args()
@@ -172,7 +167,6 @@ def run_one_trial():
             % (label, r["first_bodies_s"], r["first_tf_s"], r["rss_first_mb"]))
 
         # The advertising phase, from the status reports.
-        t_first = first["bodies"]["t"]
         done_t, done_report = None, None
         deadline = t0 + ARGS.max_wait
         last = None
@@ -411,17 +405,7 @@ def main():
             rows.append(row)
     elapsed = time.monotonic() - start
     report = write_report(rows, elapsed, command)
-    os.makedirs(ARGS.out, exist_ok=True)
-    md_path = os.path.join(ARGS.out, "startup.md")
-    csv_path = os.path.join(ARGS.out, "startup.csv")
-    with open(md_path, "w") as f:
-        f.write(report + "\n")
-    with open(csv_path, "w", newline="") as f:
-        writer = csv.DictWriter(f, fieldnames=CSV_FIELDS, extrasaction="ignore")
-        writer.writeheader()
-        for row in rows:
-            writer.writerow({k: (("%.6g" % v) if isinstance(v, float) else
-                                 ("true" if v is True else "false" if v is False else v)) for k, v in row.items()})
+    md_path, csv_path = write_results(ARGS.out, "startup", report, CSV_FIELDS, rows)
     print(report)
     print("written: %s, %s" % (md_path, csv_path))
     if len(rows) < len(values) * ARGS.trials:
