@@ -38,7 +38,7 @@ echo "== stability stress =="
 cat "$results/stress.md"
 echo "== throughput (Google Benchmark) =="
 # 0.2 s a repetition (the library's default is 0.5): the medians of five
-# move by less than the machine's run-to-run noise, at 40 % of the time.
+# move by less than the machine's run-to-run noise, in half the time.
 "$bin/throughput_bench" --benchmark_repetitions=$repetitions --benchmark_min_time=0.2 \
   --benchmark_report_aggregates_only=true \
   --benchmark_out="$results/throughput.json" --benchmark_out_format=json
