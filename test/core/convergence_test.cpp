@@ -119,5 +119,73 @@ TEST(Convergence, ForcedOrderOfEveryScheme) {
   }
 }
 
+// A load the caller computes, as a user of the core passes one (costly to
+// evaluate): a world force 0.5 cos(1.5 t) N at particle 0 and a body-axes
+// force at particle 3 whose z component is 0.4 sin(t) N.
+class SwayingLoad final : public Load {
+ public:
+  explicit SwayingLoad(const BodyModel& body) : body_(body) {}
+  void set_step_start(double t_s) { step_start_s_ = t_s; }
+  Wrench At(double time_in_step_s, const Eigen::Matrix3d& rotation) const override {
+    const double t = step_start_s_ + time_in_step_s;
+    const Eigen::Vector3d world_force = std::cos(1.5 * t) * Eigen::Vector3d(0.0, 0.5, -0.3);
+    const Eigen::Vector3d body_force = rotation * Eigen::Vector3d(0.2, 0.0, 0.4 * std::sin(t));
+    Wrench wrench;
+    wrench.force = world_force + body_force;
+    wrench.torque = (rotation * body_.particle_offsets()[0]).cross(world_force) +
+                    (rotation * body_.particle_offsets()[3]).cross(body_force);
+    return wrench;
+  }
+  bool has_torque() const override { return true; }
+
+ private:
+  const BodyModel& body_;
+  double step_start_s_ = 0.0;
+};
+
+BodyState SwayedState(const Integrator& integrator, const BodyModel& body, const BodyState& initial,
+                      double t, double dt) {
+  SwayingLoad load(body);
+  BodyState state = initial;
+  const int steps = static_cast<int>(std::lround(t / dt));
+  for (int n = 0; n < steps; ++n) {
+    load.set_step_start(n * dt);
+    integrator.Step(body, &load, dt, &state);
+  }
+  return state;
+}
+
+TEST(Convergence, TimeVaryingCostlyLoadOrderOfEveryScheme) {
+  const BodyModel body = test::DiagonalBody({1.0, 2.0, 2.5});
+  const double t = 4.0;
+  // Reference: rk4 at 1e-4 s, as in ForcedOrderOfEveryScheme.
+  const BodyState reference = SwayedState(*MakeIntegrator("rk4"), body, Tumbling(), t, 1e-4);
+  for (const std::string& name : IntegratorNames()) {
+    const auto integrator = MakeIntegrator(name);
+    const auto [dt, coarse, fine] = ErrorsAboveRoundOff(integrator->order(), [&](double step) {
+      return test::AngleBetween(SwayedState(*integrator, body, Tumbling(), t, step).orientation,
+                                reference.orientation);
+    });
+    const Band band = BandForOrder(integrator->order());
+    std::cout << name << " (time-varying): error " << coarse << " rad at dt " << dt << ", ratio "
+              << coarse / fine << "\n";
+    EXPECT_GT(fine, 1e-10) << name;
+    EXPECT_GE(coarse / fine, band.low) << name;
+    EXPECT_LE(coarse / fine, band.high) << name;
+  }
+}
+
+// The default kicks a costly load four times a step between fourth-order
+// free flows, as `casimir_rkn4` does, not between its own Strang steps.
+TEST(Convergence, DefaultNestsCostlyLoadsKicksAsCasimirRkn4) {
+  const BodyModel body = test::DiagonalBody({1.0, 2.0, 2.5});
+  const BodyState by_default =
+      SwayedState(*MakeIntegrator(kDefaultIntegrator), body, Tumbling(), 4.0, 0.04);
+  const BodyState by_rkn4 = SwayedState(*MakeIntegrator("casimir_rkn4"), body, Tumbling(), 4.0, 0.04);
+  EXPECT_EQ(by_default.orientation.coeffs(), by_rkn4.orientation.coeffs());
+  EXPECT_EQ(by_default.angular_momentum, by_rkn4.angular_momentum);
+  EXPECT_EQ(by_default.position, by_rkn4.position);
+}
+
 }  // namespace
 }  // namespace rigid_body_sim::core

@@ -45,6 +45,7 @@ class HeldLoads final : public Load {
 
   Wrench At(double time_in_step_s, const Eigen::Matrix3d& rotation) const override;
   bool has_torque() const override { return has_torque_; }
+  bool costly_to_evaluate() const override { return false; }
   Damping damping() const override { return damping_; }
   bool has_damping() const override { return has_damping_; }
   // Whether a body-axes force or couple was added.

@@ -29,6 +29,11 @@ class Load {
   // False when the torque is zero for every orientation (gravity only), which
   // lets an integrator skip the angular kick.
   virtual bool has_torque() const = 0;
+  // Whether one At() call costs about as much as a free flow of the body or
+  // more (a function the caller computes), rather than a few multiply-adds
+  // on a reduced wrench (HeldLoads). A scheme that can trade free-flow
+  // stages for evaluations nests a costly load's kicks in accurate free flows.
+  virtual bool costly_to_evaluate() const { return true; }
   // The damping the integrators apply besides the wrench; none by default.
   virtual Damping damping() const { return {}; }
   // Whether either rate of damping() is > 0. Virtual so that a load that

@@ -32,6 +32,13 @@ void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load,
     CasimirStrangStep(model, split, load, 0.0, dt_s, state);
     return;
   }
+  if (load->costly_to_evaluate()) {
+    // Four evaluations per step either way; McLachlan's kicks between
+    // fourth-order free flows leave 16–240 times less error than the triple
+    // jump's at equal dt on the forced scenes tried, for 1.4 times the step.
+    NestedStep(kMcLachlanRkn4, kFree, model, split, *load, dt_s, state);
+    return;
+  }
   // The three Strang steps with neighbouring half kicks merged: they act at
   // the same pose and time, so the sum is the same wrench once.
   const double outer = kYoshidaOuterWeight * dt_s;
