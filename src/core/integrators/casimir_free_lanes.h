@@ -94,8 +94,8 @@ struct FreeLanes : LaneBodies {
 };
 
 // FreeCompositionStep (compositions.h) lane by lane: drift, Π = q_WPᵀ L, the
-// axis flows of `splitting`, the rotation about L by c|L|h, back to the body
-// frame. The bodies in use must fit (FitsFreeLanes).
+// axis flows of `splitting` and the rotation about L by c|L|h as increments,
+// added to the orientation once. The bodies in use must fit (FitsFreeLanes).
 template <std::size_t n>
 inline __attribute__((always_inline)) void CompositionFreeLanes(const AxisSplitting<n>& splitting,
                                                                  double h, FreeLanes* lanes) {
@@ -107,25 +107,26 @@ inline __attribute__((always_inline)) void CompositionFreeLanes(const AxisSplitt
 
     const Quaternion axes{b.principal_axes[0][l], b.principal_axes[1][l], b.principal_axes[2][l],
                           b.principal_axes[3][l]};
-    Quaternion q = lanes::Multiply(Quaternion{b.orientation[0][l], b.orientation[1][l],
-                                              b.orientation[2][l], b.orientation[3][l]},
-                                   axes);
+    const Quaternion orientation{b.orientation[0][l], b.orientation[1][l], b.orientation[2][l],
+                                 b.orientation[3][l]};
+    const Quaternion principal = lanes::Multiply(orientation, axes);
     const double lx = b.angular_momentum[0][l], ly = b.angular_momentum[1][l],
                  lz = b.angular_momentum[2][l];
     double m[3];  // Π = R(q)ᵀ L
-    lanes::RotateInverse(q, lx, ly, lz, m);
+    lanes::RotateInverse(principal, lx, ly, lz, m);
 
     const double a1 = b.axis1[l], a3 = b.axis3[l];
+    Quaternion turn{0.0, 0.0, 0.0, 0.0};  // an increment: (x, y, z, w − 1)
 #pragma GCC unroll 16
     for (std::size_t i = 0; i < n; ++i) {
-      lanes::Axis1Flow(a1, splitting.axis1[i] * h, m, &q);
-      lanes::Axis3Flow(a3, splitting.axis3[i] * h, m, &q);
+      lanes::Axis1FlowIncrement(a1, splitting.axis1[i] * h, m, &turn);
+      lanes::Axis3FlowIncrement(a3, splitting.axis3[i] * h, m, &turn);
     }
-    lanes::Axis1Flow(a1, splitting.axis1[n] * h, m, &q);
+    lanes::Axis1FlowIncrement(a1, splitting.axis1[n] * h, m, &turn);
 
-    const double turn = h * b.casimir[l];
-    q = lanes::Multiply(lanes::ExpMapSmall(turn * lx, turn * ly, turn * lz), q);
-    q = lanes::Normalized(lanes::Multiply(q, Quaternion{-axes.x, -axes.y, -axes.z, axes.w}));
+    const double angle = h * b.casimir[l];
+    const Quaternion about_momentum = lanes::ExpMapSmallIncrement(angle * lx, angle * ly, angle * lz);
+    const Quaternion q = lanes::AddStepRotation(orientation, principal, axes, turn, about_momentum);
     b.orientation[0][l] = q.x;
     b.orientation[1][l] = q.y;
     b.orientation[2][l] = q.z;

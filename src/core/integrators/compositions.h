@@ -112,31 +112,24 @@ inline constexpr KickSplitting<7> kOkunborSkeelRkn6 = {
      0.38064159097092574080, 0.68913741185181063674, -0.37962421426377360608,
      0.00016600692650009894}};
 
-// The axis flows of `splitting` over h in the principal frame. When the axis-1
-// or the axis-3 coefficient vanishes (a symmetric top or a sphere) the two
-// flows commute and one exact flow each replaces the composition.
-template <std::size_t n>
+// The axis flows of `splitting` over h in the principal frame, turning the
+// principal-frame orientation or composing onto a RotationIncrement. When the
+// axis-1 or the axis-3 coefficient vanishes (a symmetric top or a sphere) the
+// two flows commute and one exact flow each replaces the composition.
+template <std::size_t n, typename Turned>
 inline void AxisFlows(const AxisSplitting<n>& splitting, const CasimirSplit& split, double h,
-                      Eigen::Vector3d* body_momentum, Eigen::Quaterniond* principal) {
+                      Eigen::Vector3d* body_momentum, Turned* turned) {
   if (split.axis1 == 0.0 || split.axis3 == 0.0) {
-    AxisFlow<0>(split.axis1, h, body_momentum, principal);
-    AxisFlow<2>(split.axis3, h, body_momentum, principal);
+    AxisFlow<0>(split.axis1, h, body_momentum, turned);
+    AxisFlow<2>(split.axis3, h, body_momentum, turned);
     return;
   }
 #pragma GCC unroll 16
   for (std::size_t i = 0; i < n; ++i) {
-    AxisFlow<0>(split.axis1, splitting.axis1[i] * h, body_momentum, principal);
-    AxisFlow<2>(split.axis3, splitting.axis3[i] * h, body_momentum, principal);
+    AxisFlow<0>(split.axis1, splitting.axis1[i] * h, body_momentum, turned);
+    AxisFlow<2>(split.axis3, splitting.axis3[i] * h, body_momentum, turned);
   }
-  AxisFlow<0>(split.axis1, splitting.axis1[n] * h, body_momentum, principal);
-}
-
-// The rest of the free flow over h: the rotation about the fixed world L by
-// c|L|h and the COM drift.
-inline void CasimirFlow(const BodyModel& model, const CasimirSplit& split, double h,
-                        BodyState* state, Eigen::Quaterniond* principal) {
-  *principal = ExpMap(h * split.casimir * state->angular_momentum) * *principal;
-  state->position += h * model.inverse_mass() * state->linear_momentum;
+  AxisFlow<0>(split.axis1, splitting.axis1[n] * h, body_momentum, turned);
 }
 
 // p += h F, L += h τ with the wrench at t_s into the step and the orientation
@@ -152,16 +145,20 @@ inline void PrincipalKick(const BodyModel& model, const Load& load, double t_s, 
   *body_momentum = principal.conjugate() * state->angular_momentum;
 }
 
-// The torque-free step: `splitting`'s axis flows, the rotation about L, the drift.
+// The torque-free step: `splitting`'s axis flows, the rotation about L, the
+// drift. The turns compose as increments and reach the orientation in one
+// addition (AddStepRotation).
 template <std::size_t n>
 void FreeCompositionStep(const AxisSplitting<n>& splitting, const BodyModel& model,
                          const CasimirSplit& split, double h, BodyState* state) {
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
-  Eigen::Quaterniond principal = state->orientation * body_from_principal;
+  const Eigen::Quaterniond principal = state->orientation * body_from_principal;
   Eigen::Vector3d body_momentum = principal.conjugate() * state->angular_momentum;
-  AxisFlows(splitting, split, h, &body_momentum, &principal);
-  CasimirFlow(model, split, h, state, &principal);
-  state->orientation = (principal * body_from_principal.conjugate()).normalized();
+  RotationIncrement turn;
+  AxisFlows(splitting, split, h, &body_momentum, &turn);
+  const RotationIncrement about_momentum = ExpMapIncrement(h * split.casimir * state->angular_momentum);
+  AddStepRotation(principal, body_from_principal, turn, about_momentum, &state->orientation);
+  state->position += h * model.inverse_mass() * state->linear_momentum;
 }
 
 // D(d₀h) K(k₀h) … K(k_{m−1}h) D(d_m h), each D the free flow of `inner` over

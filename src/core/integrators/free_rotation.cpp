@@ -4,16 +4,43 @@
 
 namespace rigid_body_sim::core {
 
+namespace {
+
+// sin(θ/2)/θ, by its series near 0, where the ratio loses precision.
+double HalfSinRatio(double angle, double half_sin) {
+  return angle < 1e-4 ? 0.5 - angle * angle / 48.0 : half_sin / angle;
+}
+
+}  // namespace
+
 Eigen::Quaterniond ExpMap(const Eigen::Vector3d& rotation_vector) {
   const double angle = rotation_vector.norm();
   double half_sin, half_cos;
   SinCos(0.5 * angle, &half_sin, &half_cos);
-  // sin(θ/2)/θ by its series near 0, where the ratio loses precision.
-  const double sin_ratio = angle < 1e-4 ? 0.5 - angle * angle / 48.0 : half_sin / angle;
   Eigen::Quaterniond q;
   q.w() = half_cos;
-  q.vec() = sin_ratio * rotation_vector;
+  q.vec() = HalfSinRatio(angle, half_sin) * rotation_vector;
   return q;
+}
+
+RotationIncrement ExpMapIncrement(const Eigen::Vector3d& rotation_vector) {
+  const double angle = rotation_vector.norm();
+  double half_sin, half_cos_minus_one;
+  SinCosMinusOne(0.5 * angle, &half_sin, &half_cos_minus_one);
+  const Eigen::Vector3d v = HalfSinRatio(angle, half_sin) * rotation_vector;
+  return {half_cos_minus_one, v.x(), v.y(), v.z()};
+}
+
+void AddStepRotation(const Eigen::Quaterniond& principal, const Eigen::Quaterniond& axes,
+                     const RotationIncrement& turn, const RotationIncrement& about_momentum,
+                     Eigen::Quaterniond* orientation) {
+  const Eigen::Quaterniond t(turn.w, turn.x, turn.y, turn.z);
+  const Eigen::Quaterniond e(about_momentum.w, about_momentum.x, about_momentum.y, about_momentum.z);
+  const Eigen::Quaterniond turned = principal * t;
+  const Eigen::Quaterniond moved = e * Eigen::Quaterniond(principal.coeffs() + turned.coeffs());
+  const Eigen::Quaterniond change = Eigen::Quaterniond(turned.coeffs() + moved.coeffs()) * axes.conjugate();
+  const double norm_drift = 0.5 * (orientation->squaredNorm() - 1.0);
+  orientation->coeffs() += change.coeffs() - norm_drift * (orientation->coeffs() + change.coeffs());
 }
 
 void LiePoissonRotation(const BodyModel& model, const Eigen::Vector3d& angular_momentum,

@@ -26,14 +26,22 @@ inline Quaternion Multiply(const Quaternion& a, const Quaternion& b) {
           a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
 
-// exp of the rotation vector θ for |θ| <= 1/16, by the series of cos(|θ|/2) and
-// sin(|θ|/2)/|θ| in |θ|²: no square root, no division (truncation < 1e-21).
-inline Quaternion ExpMapSmall(double theta_x, double theta_y, double theta_z) {
+// exp of the rotation vector θ for |θ| <= 1/16, by the series of cos(|θ|/2)
+// and sin(|θ|/2)/|θ| in |θ|²: no square root, no division (truncation <
+// 1e-21). As a rotation increment (x, y, z, w − 1) (free_rotation.h), and
+// as the unit quaternion.
+inline Quaternion ExpMapSmallIncrement(double theta_x, double theta_y, double theta_z) {
   const double u2 = 0.25 * (theta_x * theta_x + theta_y * theta_y + theta_z * theta_z);
-  const double half_cos = 1.0 + u2 * (-1.0 / 2 + u2 * (1.0 / 24 + u2 * (-1.0 / 720 + u2 * (1.0 / 40320))));
+  const double half_cos_minus_one = u2 * (-1.0 / 2 + u2 * (1.0 / 24 + u2 * (-1.0 / 720 + u2 * (1.0 / 40320))));
   const double sin_ratio =
       0.5 * (1.0 + u2 * (-1.0 / 6 + u2 * (1.0 / 120 + u2 * (-1.0 / 5040 + u2 * (1.0 / 362880)))));
-  return {sin_ratio * theta_x, sin_ratio * theta_y, sin_ratio * theta_z, half_cos};
+  return {sin_ratio * theta_x, sin_ratio * theta_y, sin_ratio * theta_z, half_cos_minus_one};
+}
+
+inline Quaternion ExpMapSmall(double theta_x, double theta_y, double theta_z) {
+  Quaternion q = ExpMapSmallIncrement(theta_x, theta_y, theta_z);
+  q.w += 1.0;
+  return q;
 }
 
 // H_1 and H_3 flows of AxisFlow<0> and AxisFlow<2> on plain numbers.
@@ -47,6 +55,36 @@ inline void Axis3Flow(double coefficient, double h, double* m, Quaternion* q) {
   double s, c;
   SinCosSmall(0.5 * h * coefficient * m[2], &s, &c);
   AxisTurn(s, c, &m[0], &m[1], &q->w, &q->x, &q->y, &q->z);
+}
+
+// The same composing onto a rotation increment `turn` (w − 1, x, y, z).
+inline void Axis1FlowIncrement(double coefficient, double h, double* m, Quaternion* turn) {
+  double s, c_minus_one;
+  SinCosMinusOneSmall(0.5 * h * coefficient * m[0], &s, &c_minus_one);
+  AxisTurnIncrement(s, c_minus_one, &m[1], &m[2], &turn->w, &turn->y, &turn->z, &turn->x);
+}
+
+inline void Axis3FlowIncrement(double coefficient, double h, double* m, Quaternion* turn) {
+  double s, c_minus_one;
+  SinCosMinusOneSmall(0.5 * h * coefficient * m[2], &s, &c_minus_one);
+  AxisTurnIncrement(s, c_minus_one, &m[0], &m[1], &turn->w, &turn->x, &turn->y, &turn->z);
+}
+
+// AddStepRotation (free_rotation.h) on plain numbers: `orientation` plus
+// Δ = (principal t + e (principal + principal t)) axes*, less the drift of
+// its norm along orientation + Δ; t and e are rotation increments.
+inline Quaternion AddStepRotation(const Quaternion& orientation, const Quaternion& principal,
+                                  const Quaternion& axes, const Quaternion& t, const Quaternion& e) {
+  const Quaternion turned = Multiply(principal, t);
+  const Quaternion moved = Multiply(e, Quaternion{principal.x + turned.x, principal.y + turned.y,
+                                                  principal.z + turned.z, principal.w + turned.w});
+  const Quaternion change =
+      Multiply(Quaternion{turned.x + moved.x, turned.y + moved.y, turned.z + moved.z, turned.w + moved.w},
+               Quaternion{-axes.x, -axes.y, -axes.z, axes.w});
+  const Quaternion& q = orientation;
+  const double norm_drift = 0.5 * (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w - 1.0);
+  return {q.x + (change.x - norm_drift * (q.x + change.x)), q.y + (change.y - norm_drift * (q.y + change.y)),
+          q.z + (change.z - norm_drift * (q.z + change.z)), q.w + (change.w - norm_drift * (q.w + change.w))};
 }
 
 // R(q)ᵀ v for a unit q: v + w t + n × t with n = −q_vec and t = 2 n × v.

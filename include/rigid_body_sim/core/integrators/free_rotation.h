@@ -11,17 +11,24 @@
 
 namespace rigid_body_sim::core {
 
-// sin x and cos x for |x| <= 1/16 by their Taylor series, whose truncation
-// error (< 1e-20 relative) is far below round-off. No branch and no call, so
-// a loop over SIMD lanes vectorises it.
-inline void SinCosSmall(double x, double* sin_x, double* cos_x) {
+// sin x and cos x − 1 for |x| <= 1/16 by their Taylor series, whose
+// truncation error (< 1e-20 relative) is far below round-off. cos x − 1 keeps
+// its relative accuracy, which 1 + (cos x − 1) rounds away. No branch and no
+// call, so a loop over SIMD lanes vectorises it.
+inline void SinCosMinusOneSmall(double x, double* sin_x, double* cos_x_minus_one) {
   const double x2 = x * x;
   *sin_x = x + x * x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880))));
-  *cos_x = 1.0 + x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 +
-                                                                         x2 * (-1.0 / 3628800)))));
+  *cos_x_minus_one =
+      x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800)))));
 }
 
-// sin x and cos x: SinCosSmall where |x| <= 1/16, std::sin/std::cos
+inline void SinCosSmall(double x, double* sin_x, double* cos_x) {
+  double cos_x_minus_one;
+  SinCosMinusOneSmall(x, sin_x, &cos_x_minus_one);
+  *cos_x = 1.0 + cos_x_minus_one;
+}
+
+// sin x and cos x (− 1): the series where |x| <= 1/16, std::sin/std::cos
 // elsewhere. Step angles are mostly tiny, and this is several times cheaper
 // there.
 inline void SinCos(double x, double* sin_x, double* cos_x) {
@@ -33,6 +40,15 @@ inline void SinCos(double x, double* sin_x, double* cos_x) {
   SinCosSmall(x, sin_x, cos_x);
 }
 
+inline void SinCosMinusOne(double x, double* sin_x, double* cos_x_minus_one) {
+  if (std::abs(x) > 0.0625) {
+    *sin_x = std::sin(x);
+    *cos_x_minus_one = std::cos(x) - 1.0;  // >= 2e-3 in size: 2 digits lost at most
+    return;
+  }
+  SinCosMinusOneSmall(x, sin_x, cos_x_minus_one);
+}
+
 // The flow of H_k = ½ coefficient · Π_k² for time h, in the principal frame:
 // the body turns by θ = h · coefficient · Π_k about principal axis k, so
 // q_WP ← q_WP ⊗ (cos θ/2, sin θ/2 e_k) and Π ← R_k(θ)ᵀ Π (Π_k and the world L
@@ -41,18 +57,36 @@ inline void SinCos(double x, double* sin_x, double* cos_x) {
 // as written out below (12 flops instead of a full product's 28).
 // On plain numbers (m: Π, q: q_WP, named by their axes) given sin and cos of
 // θ/2, so the scalar path and the SIMD lanes share it.
-inline void AxisTurn(double s, double c, double* m_i, double* m_j, double* w, double* q_i,
-                     double* q_j, double* q_k) {
+inline void MomentumTurn(double s, double c, double* m_i, double* m_j) {
   const double cos_angle = 1.0 - 2.0 * s * s;
   const double sin_angle = 2.0 * s * c;
   const double mi = *m_i;
   *m_i = cos_angle * mi + sin_angle * *m_j;
   *m_j = cos_angle * *m_j - sin_angle * mi;
+}
+
+inline void AxisTurn(double s, double c, double* m_i, double* m_j, double* w, double* q_i,
+                     double* q_j, double* q_k) {
+  MomentumTurn(s, c, m_i, m_j);
   const double w0 = *w, qi = *q_i, qj = *q_j, qk = *q_k;
   *w = c * w0 - s * qk;
   *q_i = c * qi + s * qj;
   *q_j = c * qj - s * qi;
   *q_k = c * qk + s * w0;
+}
+
+// AxisTurn on a turn kept as its difference d from the identity:
+// d ← (1 + d)(c + s e_k) − 1, given s and c − 1. d keeps its relative
+// accuracy, where the unit quaternion 1 + d would round it to its own ulp
+// at every turn (the torque-free steps' round-off floor, doc/physics.md).
+inline void AxisTurnIncrement(double s, double c_minus_one, double* m_i, double* m_j, double* d_w,
+                              double* d_i, double* d_j, double* d_k) {
+  MomentumTurn(s, 1.0 + c_minus_one, m_i, m_j);
+  const double w0 = *d_w, di = *d_i, dj = *d_j, dk = *d_k;
+  *d_w = w0 + c_minus_one * (1.0 + w0) - s * dk;
+  *d_i = di + c_minus_one * di + s * dj;
+  *d_j = dj + c_minus_one * dj - s * di;
+  *d_k = dk + c_minus_one * dk + s * (1.0 + w0);
 }
 
 template <int k>
@@ -67,8 +101,41 @@ inline void AxisFlow(double coefficient, double h, Eigen::Vector3d* body_momentu
   AxisTurn(s, c, &m[i], &m[j], &q.w(), &q.vec()[i], &q.vec()[j], &q.vec()[k]);
 }
 
-// exp of a rotation vector θ (axis θ/|θ|, angle |θ|) as a unit quaternion.
+// A rotation kept as its difference from the identity quaternion,
+// (w − 1, x, y, z): the form in which a step's small turns compose without
+// being rounded to the ulp of 1.
+struct RotationIncrement {
+  double w = 0.0, x = 0.0, y = 0.0, z = 0.0;
+};
+
+// AxisFlow composing onto a rotation increment.
+template <int k>
+inline void AxisFlow(double coefficient, double h, Eigen::Vector3d* body_momentum,
+                     RotationIncrement* turn) {
+  constexpr int i = (k + 1) % 3;
+  constexpr int j = (k + 2) % 3;
+  double s, c_minus_one;
+  SinCosMinusOne(0.5 * h * coefficient * (*body_momentum)[k], &s, &c_minus_one);
+  Eigen::Vector3d& m = *body_momentum;
+  double* d[3] = {&turn->x, &turn->y, &turn->z};
+  AxisTurnIncrement(s, c_minus_one, &m[i], &m[j], &turn->w, d[i], d[j], d[k]);
+}
+
+// exp of a rotation vector θ (axis θ/|θ|, angle |θ|) as a unit quaternion,
+// and as its increment.
 Eigen::Quaterniond ExpMap(const Eigen::Vector3d& rotation_vector);
+RotationIncrement ExpMapIncrement(const Eigen::Vector3d& rotation_vector);
+
+// orientation ← orientation + Δ for the step whose principal-frame
+// orientation `principal` = orientation · axes goes to (1 + e) principal
+// (1 + t): Δ = (principal t + e (principal + principal t)) axes*, formed from
+// the increments and added once, with the drift of |orientation|² − 1 taken
+// out along the new orientation (which leaves the rotation alone). One
+// rounding per step instead of one per turn, and no renormalisation that
+// rounds again.
+void AddStepRotation(const Eigen::Quaterniond& principal, const Eigen::Quaterniond& axes,
+                     const RotationIncrement& turn, const RotationIncrement& about_momentum,
+                     Eigen::Quaterniond* orientation);
 
 // The torque-free rotation over dt_s by Lie–Poisson splitting of
 // H = Σ Π_k²/2λ_k: exact flows about the principal axes composed
