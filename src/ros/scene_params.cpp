@@ -18,9 +18,8 @@ namespace {
 using XmlRpc::XmlRpcValue;
 
 constexpr int kDefaultShapeResolution = 5;
-// Bounds that keep a mistyped or hostile scene from exhausting memory at start
-// (the scene is held in RAM, once per body and per particle).
-constexpr int kMaxParticlesPerBody = 100000;
+// A bound that keeps a mistyped or hostile scene from exhausting memory at
+// start (the scene is held in RAM, once per particle).
 constexpr int kMaxShapeResolution = 40;  // 64,000 cells
 constexpr std::size_t kMaxNameLength = 128;
 // More shards than this would be more processes than any one scene needs.

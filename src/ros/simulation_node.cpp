@@ -1,5 +1,7 @@
 #include "rigid_body_sim/ros/simulation_node.h"
 
+#include <malloc.h>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -47,6 +49,10 @@ std::optional<LockstepGate> MakeLockstepGate(const LockstepSettings& lockstep) {
   return LockstepGate(lockstep.publishers, lockstep.timeout_s);
 }
 
+std::string BodyLimitMessage(std::size_t bodies) {
+  return "the node already has " + std::to_string(bodies) + " bodies, the most it may have";
+}
+
 std::string Join(const std::vector<std::string>& names) {
   std::string joined;
   for (const std::string& name : names) joined += (joined.empty() ? "" : ", ") + name;
@@ -88,8 +94,16 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
                    lockstep_ ? &*lockstep_ : nullptr, state_hashes_),
       lattice_(settings_.rate_hz),
       private_nh_(private_nh),
-      runtime_config_(private_nh_, settings_,
-                      [this](const NodeSettings& next) { ApplyRuntimeSettings(next); }) {
+      body_count_(world_.size()),
+      requests_(private_nh_),
+      spawn_service_(requests_.node_handle().advertiseService("spawn_body", &SimulationNode::OnSpawnBody,
+                                                              this)),
+      runtime_config_(requests_.node_handle(), settings_, [this](const NodeSettings& next) {
+        requests_.OnSteppingThread([this, next] {
+          ApplyRuntimeSettings(next);
+          return true;
+        });
+      }) {
   const ros::TransportHints low_latency = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(private_nh_.subscribe("particle_wrench", kWrenchQueueSize,
                                                &SimulationNode::OnParticleWrench, this, low_latency));
@@ -113,7 +127,6 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       private_nh_.advertiseService("apply_body_wrench", &SimulationNode::OnApplyBodyWrench, this));
   services_.push_back(
       private_nh_.advertiseService("clear_body_wrenches", &SimulationNode::OnClearBodyWrenches, this));
-  services_.push_back(private_nh_.advertiseService("spawn_body", &SimulationNode::OnSpawnBody, this));
   services_.push_back(private_nh_.advertiseService("delete_body", &SimulationNode::OnDeleteBody, this));
 
   WarnIfPublishRateIsRounded(settings_, publish_every_steps_);
@@ -464,25 +477,43 @@ bool SimulationNode::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Respons
                        "): the other shards would not know the body";
     return true;
   }
-  SceneBodies entry;
-  try {
-    if (world_.size() >= kMaxSceneBodies) {
-      throw SceneError("the node already has " + std::to_string(world_.size()) +
-                       " bodies, the most it may have");
+  {
+    SceneBodies entry;
+    try {
+      const std::size_t index = body_count_;
+      if (index >= kMaxSceneBodies) throw SceneError(BodyLimitMessage(index));
+      ParseBodyEntry(XmlRpcFromYaml(request.body_yaml), index, &entry);
+    } catch (const std::exception& error) {  // SceneError, or a model the core refuses
+      response.message = error.what();
     }
-    ParseBodyEntry(XmlRpcFromYaml(request.body_yaml), world_.size(), &entry);
+    if (!entry.models.empty()) {
+      const auto added = requests_.OnSteppingThread([this, &entry, &response] {
+        AddBody(std::move(entry), &response);
+        return true;
+      });
+      if (!added) response.message = "the node is shutting down";
+    }
+  }
+  // What the text's values took goes back to the system, accepted or not.
+  malloc_trim(0);
+  return true;
+}
+
+void SimulationNode::AddBody(SceneBodies entry, SpawnBody::Response* response) {
+  try {
+    if (world_.size() >= kMaxSceneBodies) throw SceneError(BodyLimitMessage(world_.size()));
     world_.AddBody(std::move(entry.models[0]), entry.initial_states[0], entry.properties[0]);
   } catch (const std::exception& error) {  // SceneError, or the world refusing the body
-    response.message = error.what();
-    return true;
+    response->message = error.what();
+    return;
   }
+  body_count_ = world_.size();
   const core::BodyModel& model = world_.model(world_.size() - 1);
   intake_.AddBody(model);
   publisher_.AddBody(model);
   diagnostics_.OnBodyAdded();
-  response.success = true;
-  response.message = "spawned '" + model.name() + "' as bodies[" + std::to_string(world_.size() - 1) + "]";
-  return true;
+  response->success = true;
+  response->message = "spawned '" + model.name() + "' as bodies[" + std::to_string(world_.size() - 1) + "]";
 }
 
 bool SimulationNode::OnDeleteBody(DeleteBody::Request& request, DeleteBody::Response& response) {
@@ -493,6 +524,7 @@ bool SimulationNode::OnDeleteBody(DeleteBody::Request& request, DeleteBody::Resp
     return true;
   }
   world_.RemoveBody(*body);
+  body_count_ = world_.size();
   intake_.RemoveBody(request.body);
   publisher_.RemoveBody(*body);
   diagnostics_.OnBodyRemoved(*body);

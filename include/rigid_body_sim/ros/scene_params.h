@@ -81,6 +81,8 @@ struct Scene {
 // The most bodies a scene, with the ones spawned later, may have: a bound
 // that keeps a mistyped or hostile scene from exhausting memory.
 constexpr std::size_t kMaxSceneBodies = 100000;
+// The most particles one body may have, for the same reason.
+constexpr int kMaxParticlesPerBody = 100000;
 
 // An invalid scene or parameter; what() is one line naming the entry and key,
 // e.g. "bodies[2] (name 'rod'): particles[1].mass must be > 0, got -1".

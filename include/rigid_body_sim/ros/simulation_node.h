@@ -2,18 +2,21 @@
 // services, wired to the parts that take wrenches in (WrenchIntake), send
 // states out (StatePublisher) and report (NodeDiagnostics). No physics here.
 //
-// Threading: everything runs on the thread that calls Run(). The loop steps
-// the world when the pacer says a step is due (and, under lockstep, when the
-// controllers have answered the last published cycle) and, while waiting,
-// serves the global callback queue. Callbacks therefore run between steps,
-// never during one, and need no lock; a wrench received before step n acts
-// on step n exactly.
+// Threading: the world is touched only by the thread that calls Run(). The
+// loop steps the world when the pacer says a step is due (and, under
+// lockstep, when the controllers have answered the last published cycle)
+// and, while waiting, serves the global callback queue. Callbacks therefore
+// run between steps, never during one, and need no lock; a wrench received
+// before step n acts on step n exactly. The requests that are slow to read
+// (~spawn_body, dynamic_reconfigure) are read and checked on a RequestLane's
+// thread, which hands what they change to the global queue.
 //
 // Stamps: step n reaches the lattice point K0 + n (core::TimeLattice), K0
 // fixed when stepping starts; a cycle is published when K0 + n is a multiple
 // of the publish decimation.
 #pragma once
 
+#include <atomic>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -40,6 +43,7 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/lockstep_gate.h"
 #include "rigid_body_sim/ros/node_diagnostics.h"
+#include "rigid_body_sim/ros/request_lane.h"
 #include "rigid_body_sim/ros/runtime_config.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/state_hash_worker.h"
@@ -100,7 +104,11 @@ class SimulationNode {
   bool OnApplyBodyWrench(ApplyBodyWrench::Request& request, ApplyBodyWrench::Response& response);
   bool OnClearBodyWrenches(ClearBodyWrenches::Request& request,
                            ClearBodyWrenches::Response& response);
+  // On the request lane: parses and checks the body there, adds it on the
+  // stepping thread.
   bool OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response& response);
+  // On the stepping thread: the parsed body into the world and every part.
+  void AddBody(SceneBodies entry, SpawnBody::Response* response);
   bool OnDeleteBody(DeleteBody::Request& request, DeleteBody::Response& response);
   // The runtime keys of `next` (checked by RuntimeConfig), from the next step on.
   void ApplyRuntimeSettings(const NodeSettings& next);
@@ -123,7 +131,13 @@ class SimulationNode {
   ros::NodeHandle private_nh_;
   std::vector<ros::Subscriber> subscribers_;
   std::vector<ros::ServiceServer> services_;
-  RuntimeConfig runtime_config_;  // last: its callback uses everything above
+  // The world's body count for the request lane's messages; the stepping
+  // thread writes it.
+  std::atomic<std::size_t> body_count_;
+  // Last: their callbacks use everything above, and they stop first.
+  RequestLane requests_;
+  ros::ServiceServer spawn_service_;
+  RuntimeConfig runtime_config_;
 };
 
 }  // namespace rigid_body_sim

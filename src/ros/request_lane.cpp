@@ -1,0 +1,40 @@
+#include "rigid_body_sim/ros/request_lane.h"
+
+#include <ros/ros.h>
+
+namespace rigid_body_sim {
+namespace {
+
+// A function as a callback of a ros::CallbackQueue.
+class FunctionCallback : public ros::CallbackInterface {
+ public:
+  explicit FunctionCallback(std::function<void()> run) : run_(std::move(run)) {}
+  CallResult call() override {
+    run_();
+    return Success;
+  }
+
+ private:
+  std::function<void()> run_;
+};
+
+}  // namespace
+
+RequestLane::RequestLane(const ros::NodeHandle& private_nh)
+    : stepping_thread_(std::this_thread::get_id()),
+      lane_nh_(private_nh),
+      spinner_(1, &queue_) {
+  lane_nh_.setCallbackQueue(&queue_);
+  spinner_.start();
+}
+
+RequestLane::~RequestLane() {
+  stopping_ = true;
+  spinner_.stop();
+}
+
+void RequestLane::Post(std::function<void()> run) {
+  ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<FunctionCallback>(std::move(run)));
+}
+
+}  // namespace rigid_body_sim
