@@ -1,8 +1,11 @@
 # The ROS node over the core: a library (parameters, conversions, the node
 # class) and a thin executable. Included from CMakeLists.txt after the core.
 include_directories(include ${catkin_INCLUDE_DIRS})
-# ~spawn_body reads one scene entry from YAML text.
+# ~spawn_body reads one scene entry from YAML text: libyaml parses it (bounded
+# lookahead), yaml-cpp converts its odd scalars as rosparam would.
 find_package(yaml-cpp REQUIRED)
+find_package(PkgConfig REQUIRED)
+pkg_check_modules(LIBYAML REQUIRED yaml-0.1)
 
 add_library(rigid_body_sim_ros
   src/ros/scene_params.cpp
@@ -26,7 +29,8 @@ add_library(rigid_body_sim_ros
 # The ROS headers come from include_directories() above here and from
 # catkin_package() for dependent packages: no absolute path in the interface.
 target_include_directories(rigid_body_sim_ros PUBLIC include PRIVATE ${catkin_INCLUDE_DIRS})
-target_link_libraries(rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES})
+target_link_libraries(rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES}
+  ${LIBYAML_LIBRARIES})
 add_dependencies(rigid_body_sim_ros
   ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 

@@ -15,7 +15,7 @@ packages=(
   python3-geometry-msgs python3-std-srvs python3-diagnostic-msgs
   python3-tf2-msgs python3-visualization-msgs python3-rosgraph-msgs
   python3-nav-msgs python3-sensor-msgs python3-rospy python3-numpy python3-yaml
-  libeigen3-dev libboost-dev libgtest-dev googletest libbenchmark-dev libyaml-cpp-dev
+  libeigen3-dev libboost-dev libgtest-dev googletest libbenchmark-dev libyaml-cpp-dev libyaml-dev
   "$@"
 )
 missing=()

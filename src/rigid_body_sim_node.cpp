@@ -1,5 +1,6 @@
 // rigid_body_sim_node: reads the scene from private parameters and runs the
 // simulation until shutdown. An invalid scene ends it with one error line.
+#include <malloc.h>
 #include <pthread.h>
 #include <sched.h>
 
@@ -31,9 +32,16 @@ void OutrankIoThreads() {
   }
 }
 
+// glibc raises its mmap threshold each time a large mapped block is freed, so
+// that after one large request (a spawned body's text, a long array of
+// wrenches) every later one is taken from the heap and kept there when freed.
+// A fixed threshold maps them all and gives them back when freed.
+void ReturnLargeBuffers() { mallopt(M_MMAP_THRESHOLD, 256 * 1024); }
+
 }  // namespace
 
 int main(int argc, char** argv) {
+  ReturnLargeBuffers();
   ros::init(argc, argv, "rigid_body_sim");
   const ros::NodeHandle private_nh("~");
   std::optional<rigid_body_sim::SimulationNode> node;

@@ -1,9 +1,13 @@
 #include "rigid_body_sim/ros/request_lane.h"
 
+#include <malloc.h>
+
 #include <ros/ros.h>
 
 namespace rigid_body_sim {
 namespace {
+
+constexpr double kTrimPeriod_s = 0.5;
 
 // A function as a callback of a ros::CallbackQueue.
 class FunctionCallback : public ros::CallbackInterface {
@@ -25,6 +29,9 @@ RequestLane::RequestLane(const ros::NodeHandle& private_nh)
       lane_nh_(private_nh),
       spinner_(1, &queue_) {
   lane_nh_.setCallbackQueue(&queue_);
+  trim_timer_ = lane_nh_.createWallTimer(ros::WallDuration(kTrimPeriod_s), [this](const ros::WallTimerEvent&) {
+    if (trim_wanted_.exchange(false)) malloc_trim(0);
+  });
   spinner_.start();
 }
 

@@ -1,7 +1,5 @@
 #include "rigid_body_sim/ros/simulation_node.h"
 
-#include <malloc.h>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -28,6 +26,8 @@ constexpr double kLockstepPollPeriod_s = 0.05;
 // Queues sized for bursts of per-particle messages between two steps.
 constexpr std::uint32_t kWrenchQueueSize = 1000;
 constexpr std::uint32_t kWrenchArrayQueueSize = 100;
+// A ~step_with_wrenches request this long leaves megabytes on the heap.
+constexpr std::size_t kLargeWrenchRequest = 10000;
 
 core::WorldOptions MakeWorldOptions(const NodeSettings& settings) {
   core::WorldOptions options;
@@ -103,6 +103,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
           ApplyRuntimeSettings(next);
           return true;
         });
+        requests_.TrimMemorySoon();
       }) {
   const ros::TransportHints low_latency = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(private_nh_.subscribe("particle_wrench", kWrenchQueueSize,
@@ -393,6 +394,7 @@ bool SimulationNode::OnStepWithWrenches(StepWithWrenches::Request& request,
   std::vector<std::string> rejections;
   intake_.TakeArray(request.wrenches, start_stamp_, world_.time(),
                     [this](const core::ParticleWrench& wrench) { Hold(wrench); }, &rejections);
+  if (request.wrenches.size() >= kLargeWrenchRequest) requests_.TrimMemorySoon();
   const std::uint64_t hash = StepWhilePaused(request.steps);
   response.success = true;
   response.sim_time = Stamp().toSec();
@@ -494,8 +496,7 @@ bool SimulationNode::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Respons
       if (!added) response.message = "the node is shutting down";
     }
   }
-  // What the text's values took goes back to the system, accepted or not.
-  malloc_trim(0);
+  requests_.TrimMemorySoon();  // what the text took, accepted or not
   return true;
 }
 

@@ -35,6 +35,11 @@ class RequestLane {
   // The private namespace, with callbacks on the lane's thread.
   ros::NodeHandle& node_handle() { return lane_nh_; }
 
+  // Asks the lane to give the heap's free pages back to the system soon
+  // (within half a second), once a large request's buffers are freed: the
+  // heap keeps them otherwise. Any thread.
+  void TrimMemorySoon() { trim_wanted_ = true; }
+
   // Runs `change` on the stepping thread between two steps and returns its
   // result; nullopt if the lane stops first (which happens only once the
   // stepping thread serves no more callbacks, so `change` may refer to the
@@ -47,8 +52,10 @@ class RequestLane {
 
   std::thread::id stepping_thread_;
   std::atomic<bool> stopping_{false};
+  std::atomic<bool> trim_wanted_{false};
   ros::CallbackQueue queue_;
   ros::NodeHandle lane_nh_;
+  ros::WallTimer trim_timer_;
   ros::AsyncSpinner spinner_;
 };
 

@@ -1,0 +1,167 @@
+#!/usr/bin/python3
+"""Hostile requests cost bounded memory and no late step (doc/reliability.md).
+
+Each request is sent once to a node stepping at 1 kHz in real time. Around
+it the node's peak resident memory is reset (/proc/<pid>/clear_refs) and read
+back (VmHWM), and its resident memory read before and a moment after
+(VmRSS). Checked for every request:
+- peak - before <= 64 MiB + the request's serialized size;
+- a refused request: after - before <= 2 MiB (its memory is given back),
+  and the refusal names the limit;
+- the diagnostics' catch_up_limit_hits did not grow: no wake-up of the
+  stepping loop came more than 0.1 s late while the request was read.
+A table of the figures is printed (rostest keeps it in the test's log).
+"""
+import io
+import os
+import time
+import unittest
+from xmlrpc.client import ServerProxy
+
+import rosgraph
+import rospy
+import rostest
+from diagnostic_msgs.msg import DiagnosticArray
+from dynamic_reconfigure.msg import Config, DoubleParameter
+from dynamic_reconfigure.srv import Reconfigure
+from rigid_body_sim.srv import SpawnBody, StepWithWrenches
+from rigid_body_sim.testing import particle_wrench
+from std_srvs.srv import SetBool
+
+NODE = '/rigid_body_sim'
+MIB = 1 << 20
+PEAK_BOUND = 64 * MIB     # beyond the request's own size
+GIVEN_BACK = 2 * MIB      # what a refused request may leave behind
+
+
+def billion_laughs():
+    """Ten levels of ten aliases: 10^10 strings from about 500 bytes."""
+    lines = ['a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol, lol]']
+    for level in range(1, 10):
+        previous = '*a%d' % (level - 1)
+        lines.append('a%d: &a%d [%s]' % (level, level, ', '.join([previous] * 10)))
+    return '\n'.join(lines)
+
+
+def long_string_aliased():
+    """A 1 MB string used 1,000 times: 1 GB."""
+    return 's: &s ' + 'x' * MIB + '\nl: [' + ', '.join(['*s'] * 1000) + ']'
+
+
+def deep_nesting():
+    return '[' * 100000 + ']' * 100000
+
+
+def particles(count):
+    """A legal body of `count` particles (count = 100,000: the largest)."""
+    out = io.StringIO()
+    out.write('{name: big, position: [0, 0, 5], particles: [')
+    for i in range(count):
+        out.write('%s{mass: 0.001, position: [%.9f, %.9f, %.9f]}' %
+                  (', ' if i else '', (i % 47) * 0.01, (i % 53) * 0.01, (i % 59) * 0.01))
+    out.write(']}')
+    return out.getvalue()
+
+
+class HostileInput(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('hostile_input_test')
+        rospy.wait_for_service(NODE + '/spawn_body', 60)
+        master = rosgraph.Master('/hostile_input_test')
+        cls.pid = ServerProxy(master.lookupNode(NODE)).getPid('/hostile_input_test')[2]
+        cls.diagnostics = {}
+        cls.reports = 0
+        rospy.Subscriber('/diagnostics', DiagnosticArray, cls.on_diagnostics, queue_size=10)
+        cls.spawn = rospy.ServiceProxy(NODE + '/spawn_body', SpawnBody)
+        cls.rows = []
+
+    @classmethod
+    def tearDownClass(cls):
+        print('\n%-28s %10s %10s %10s %10s %6s' % ('request', 'size MiB', 'before MiB', 'peak MiB',
+                                                  'after MiB', 'late'))
+        for row in cls.rows:
+            print('%-28s %10.2f %10.1f %10.1f %10.1f %6d' % row)
+
+    @classmethod
+    def on_diagnostics(cls, msg):
+        for status in msg.status:
+            if status.name == NODE[1:] + ': simulation':
+                cls.diagnostics = {kv.key: kv.value for kv in status.values}
+                cls.reports += 1
+
+    def status(self, key):
+        return int(self.diagnostics[key])
+
+    def next_report(self):
+        seen = self.reports
+        deadline = time.monotonic() + 10.0
+        while self.reports <= seen + 1 and time.monotonic() < deadline:
+            time.sleep(0.05)
+        self.assertGreater(self.reports, seen + 1, 'no diagnostics report within 10 s')
+
+    def memory(self, key):
+        with open('/proc/%d/status' % self.pid) as status:
+            for line in status:
+                if line.startswith(key + ':'):
+                    return int(line.split()[1]) * 1024
+        raise AssertionError('%s not in /proc/%d/status' % (key, self.pid))
+
+    def measure(self, name, size, send):
+        """Sends one request; checks and records the memory and lateness."""
+        self.next_report()
+        late_before = self.status('catch_up_limit_hits')
+        with open('/proc/%d/clear_refs' % self.pid, 'w') as clear_refs:
+            clear_refs.write('5')  # VmHWM back to VmRSS
+        before = self.memory('VmRSS')
+        response = send()
+        time.sleep(0.5)
+        peak, after = self.memory('VmHWM'), self.memory('VmRSS')
+        self.next_report()
+        late = self.status('catch_up_limit_hits') - late_before
+        self.rows.append((name, size / MIB, before / MIB, peak / MIB, after / MIB, late))
+        self.assertLessEqual(peak - before, PEAK_BOUND + size, name)
+        self.assertEqual(late, 0, '%s: %d wake-ups more than 0.1 s late' % (name, late))
+        return response, before, after
+
+    def refused(self, name, text, limit):
+        response, before, after = self.measure(name, len(text), lambda: self.spawn(text))
+        self.assertFalse(response.success, name)
+        self.assertIn(limit, response.message, name)
+        self.assertLessEqual(after - before, GIVEN_BACK, name)
+
+    def test_1_bombs_are_refused_naming_the_limit(self):
+        self.refused('billion laughs', billion_laughs(), 'expands to more than 48 MiB')
+        self.refused('1 MB string aliased 1,000x', long_string_aliased(), 'expands to more than')
+        self.refused('nesting 100,000 deep', deep_nesting(), 'nested deeper than 16')
+        self.refused('text of 16 MiB + 1 byte', ' ' * (16 * MIB + 1), 'more than 16 MiB')
+
+    def test_2_the_largest_body_is_taken_off_the_stepping_thread(self):
+        text = particles(100000)
+        response, _, _ = self.measure('100,000-particle body', len(text), lambda: self.spawn(text))
+        self.assertTrue(response.success, response.message)
+
+    def test_3_a_reconfiguration_of_100000_entries(self):
+        reconfigure = rospy.ServiceProxy(NODE + '/set_parameters', Reconfigure)
+        config = Config(doubles=[DoubleParameter('unknown_%d' % i, float(i)) for i in range(100000)])
+        config.doubles.append(DoubleParameter('gravity_z', -1.0))
+        size = 100000 * 30
+        self.measure('reconfigure, 100,000 entries', size, lambda: reconfigure(config))
+        self.assertEqual(rospy.get_param(NODE + '/gravity'), [0.0, 0.0, -1.0])
+
+    def test_4_a_large_step_with_wrenches(self):
+        rospy.ServiceProxy(NODE + '/set_paused', SetBool)(True)
+        step = rospy.ServiceProxy(NODE + '/step_with_wrenches', StepWithWrenches)
+        count = 100000
+        wrenches = [particle_wrench('box', i % 8, force=(0.0, 0.0, 1e-6)) for i in range(count)]
+        wrenches += [particle_wrench('nobody') for _ in range(count)]
+        size = 2 * count * 72
+        response, before, after = self.measure('step_with_wrenches, 200,000', size,
+                                               lambda: step(wrenches, 1))
+        rospy.ServiceProxy(NODE + '/set_paused', SetBool)(False)
+        self.assertTrue(response.success, response.message[:200])
+        self.assertLessEqual(after - before, GIVEN_BACK)
+
+
+if __name__ == '__main__':
+    rostest.rosrun('rigid_body_sim', 'hostile_input', HostileInput)
