@@ -153,8 +153,13 @@ class SimClient(object):
                    start if start is not None else rospy.Time(),
                    rospy.Duration.from_sec(duration))
 
-    def clear_wrenches(self, body=''):
-        """Drops the wrenches of `body` ('' = every body)."""
+    def clear_wrenches(self):
+        """~clear_wrenches: drops every held wrench and job."""
+        self._call('clear_wrenches')
+
+    def clear_body_wrenches(self, body=''):
+        """~clear_body_wrenches: drops the wrenches and jobs of `body` ('' =
+        every body)."""
         self._call('clear_body_wrenches', body)
 
     def reset(self):
