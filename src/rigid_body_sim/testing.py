@@ -19,7 +19,7 @@ import numpy as np
 import rospy
 import yaml
 from diagnostic_msgs.msg import DiagnosticArray
-from geometry_msgs.msg import Point, Vector3, Wrench
+from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
 from rigid_body_sim.msg import (BodyStateArray, ParticleWrench,
                                 StampedParticleWrenchArray)
 from rigid_body_sim.srv import (ApplyBodyWrench, ClearBodyWrenches, DeleteBody,
@@ -152,6 +152,16 @@ class SimClient(object):
                    Wrench(force=Vector3(*force), torque=Vector3(*torque)),
                    start if start is not None else rospy.Time(),
                    rospy.Duration.from_sec(duration))
+
+    def set_body_state(self, body, position=(0, 0, 0), orientation=(0, 0, 0, 1),
+                       linear_velocity=(0, 0, 0), angular_velocity=(0, 0, 0)):
+        """~set_body_state: the COM's `position` [m], `orientation` (x, y, z,
+        w; normalised by the node), `linear_velocity` [m/s] and
+        `angular_velocity` [rad/s], world axes. RuntimeError with the node's
+        message when refused."""
+        self._call('set_body_state', body,
+                   Pose(position=Point(*position), orientation=Quaternion(*orientation)),
+                   Twist(linear=Vector3(*linear_velocity), angular=Vector3(*angular_velocity)))
 
     def clear_wrenches(self):
         """~clear_wrenches: drops every held wrench and job."""
