@@ -5,6 +5,7 @@
     sim.pause()
     result = sim.step(100)         # 100 steps; the state reached
     result.states['box'].position  # numpy array, world [m]
+    result.stamp                   # rospy.Time of that state, on the lattice
 
 Everything goes through the node's public topics and services; nothing here
 knows its internals. States come as `BodyState` tuples of numpy arrays, keyed
@@ -32,9 +33,12 @@ BodyState = collections.namedtuple('BodyState', [
     'name', 'position', 'orientation', 'linear_velocity', 'angular_velocity',
     'linear_momentum', 'angular_momentum', 'kinetic_energy'])
 
-# What a step returns: the stamp [s] of the state reached, the states, and
-# the node's state hash of them.
-StepResult = collections.namedtuple('StepResult', ['sim_time', 'states', 'state_hash', 'message'])
+# What a step returns: the stamp of the state reached, the states, the node's
+# state hash of them and its message. `stamp` is that rospy.Time exactly, as
+# the node stamps it on the time lattice; `sim_time` is the service's float
+# seconds of it, not exact: a double at 1.8e9 s resolves only 2.4e-7 s.
+StepResult = collections.namedtuple('StepResult', ['sim_time', 'states', 'state_hash', 'message',
+                                                   'stamp'])
 
 _FNV_OFFSET_BASIS = 0xcbf29ce484222325
 _FNV_PRIME = 0x100000001b3
@@ -86,6 +90,11 @@ def particle_wrench(body, particle=0, force=(0, 0, 0), torque=(0, 0, 0), frame='
     msg.particle = particle
     msg.wrench = Wrench(force=Vector3(*force), torque=Vector3(*torque))
     return msg
+
+
+def _stamp(msg_stamp):
+    """A message's stamp as a rospy.Time, exact."""
+    return rospy.Time(msg_stamp.secs, msg_stamp.nsecs)
 
 
 class SimClient(object):
@@ -141,7 +150,7 @@ class SimClient(object):
         entries are named in its message; RuntimeError if no step was taken."""
         response = self._call('step_with_wrenches', list(wrenches), steps)
         return StepResult(response.sim_time, to_states(response.states), response.state_hash,
-                          response.message)
+                          response.message, _stamp(response.states.header.stamp))
 
     def push(self, body, force, point=(0, 0, 0), frame='', torque=(0, 0, 0), duration=-1.0,
              start=None):
@@ -201,6 +210,10 @@ class SimClient(object):
             if not self._lock.wait_for(lambda: self._latest is not None, timeout):
                 raise RuntimeError('no message on %s within %g s' % (self._name('bodies'), timeout))
             return self._latest
+
+    def stamp(self, timeout=10.0):
+        """The stamp of the last ~bodies message, an exact rospy.Time."""
+        return _stamp(self.latest(timeout).header.stamp)
 
     def states(self, timeout=10.0):
         """The last published states: body name -> BodyState."""
