@@ -12,6 +12,7 @@ knows its internals. States come as `BodyState` tuples of numpy arrays, keyed
 by body name in scene order.
 """
 import collections
+import math
 import struct
 import threading
 import warnings
@@ -39,6 +40,9 @@ BodyState = collections.namedtuple('BodyState', [
 # seconds of it, not exact: a double at 1.8e9 s resolves only 2.4e-7 s.
 StepResult = collections.namedtuple('StepResult', ['sim_time', 'states', 'state_hash', 'message',
                                                    'stamp'])
+
+# A wrench on a whole body for the steps of one call (see body_wrench()).
+BodyWrench = collections.namedtuple('BodyWrench', ['body', 'force', 'torque', 'point', 'frame'])
 
 _FNV_OFFSET_BASIS = 0xcbf29ce484222325
 _FNV_PRIME = 0x100000001b3
@@ -92,6 +96,27 @@ def particle_wrench(body, particle=0, force=(0, 0, 0), torque=(0, 0, 0), frame='
     return msg
 
 
+def body_wrench(body, force=(0, 0, 0), torque=(0, 0, 0), point=(0, 0, 0), frame=''):
+    """A BodyWrench for SimClient.step(): `force` [N] at `point` of `body`
+    (body frame [m], (0, 0, 0) = the COM), `torque` [N m] a pure couple; axes
+    of `frame` ('' = world, the body's name = its own axes)."""
+    return BodyWrench(body, tuple(force), tuple(torque), tuple(point), frame)
+
+
+def _rate_fraction(rate):
+    """`rate` [Hz] as the node's time lattice takes it: (numerator,
+    denominator) with the fewest decimals, at most nine, that write it to
+    1e-9 relative."""
+    for decimals in range(10):
+        scaled = rate * 10.0 ** decimals
+        numerator = math.floor(scaled)
+        if scaled - numerator >= 0.5:  # llround: half away from zero
+            numerator += 1
+        if abs(scaled - numerator) <= 1e-9 * scaled:
+            break
+    return numerator, 10 ** decimals
+
+
 def _stamp(msg_stamp):
     """A message's stamp as a rospy.Time, exact."""
     return rospy.Time(msg_stamp.secs, msg_stamp.nsecs)
@@ -99,7 +124,8 @@ def _stamp(msg_stamp):
 
 class SimClient(object):
     """The node `node` (default /rigid_body_sim) seen from a test. Waits for
-    its services (at most `timeout` s) and keeps the latest ~bodies message."""
+    its services (at most `timeout` s) and keeps the latest ~bodies message.
+    `rate` is the node's ~rate [Hz] and `dt` = 1 / rate its step [s]."""
 
     def __init__(self, node='/rigid_body_sim', timeout=30.0):
         self.node = rospy.resolve_name(node)
@@ -107,6 +133,9 @@ class SimClient(object):
         self._latest = None
         self._diagnostics = {}
         self.wait_for_node(timeout)
+        self.rate = rospy.get_param(self._name('rate'), 1000)  # the node's default
+        self.dt = 1.0 / self.rate
+        self._rate_numerator, self._rate_denominator = _rate_fraction(self.rate)
         self._services = {}
         for name, srv in (('set_paused', SetBool), ('step_with_wrenches', StepWithWrenches),
                           ('reset', Empty), ('clear_wrenches', Empty),
@@ -140,17 +169,40 @@ class SimClient(object):
     def resume(self):
         self._call('set_paused', False)
 
-    def step(self, steps=1):
-        """`steps` steps while paused; a StepResult."""
-        return self.step_with_wrenches([], steps)
+    def step(self, steps=1, body_wrenches=()):
+        """`steps` steps while paused; a StepResult. `body_wrenches`
+        (BodyWrench, see body_wrench()) act on exactly these steps."""
+        return self.step_with_wrenches([], steps, body_wrenches)
 
-    def step_with_wrenches(self, wrenches, steps=1):
+    def step_with_wrenches(self, wrenches, steps=1, body_wrenches=()):
         """Holds `wrenches` (ParticleWrench messages, see particle_wrench())
         as one array, then `steps` steps while paused; a StepResult. Rejected
-        entries are named in its message; RuntimeError if no step was taken."""
+        entries are named in its message; RuntimeError if no step was taken.
+
+        Each of `body_wrenches` (BodyWrench, see body_wrench()) becomes a
+        ~apply_body_wrench job from the next step over a window that ends
+        half a step before the step after these, so it acts on exactly these
+        steps. The jobs are added before the steps: when the node refuses
+        one (RuntimeError with its message), no step is taken but the jobs
+        before it stay; when it refuses the steps (not paused), all of them
+        stay. A body wrench held across calls is push() (until cleared, or
+        for a duration) or a message on ~<body>/wrench."""
+        if steps < 1:
+            raise ValueError('steps must be >= 1, got %r' % (steps,))
+        for wrench in body_wrenches:
+            self._call('apply_body_wrench', wrench.body, wrench.frame, Point(*wrench.point),
+                       Wrench(force=Vector3(*wrench.force), torque=Vector3(*wrench.torque)),
+                       rospy.Time(), self._window(steps))
         response = self._call('step_with_wrenches', list(wrenches), steps)
         return StepResult(response.sim_time, to_states(response.states), response.state_hash,
                           response.message, _stamp(response.states.header.stamp))
+
+    def _window(self, steps):
+        """(steps - 1/2) dt as a rospy.Duration, rounded half up to the
+        nanosecond: the node compares times in float seconds, and half a step
+        keeps its window's end clear of the step after these."""
+        numerator = (2 * steps - 1) * 10 ** 9 * self._rate_denominator
+        return rospy.Duration(0, (numerator + self._rate_numerator) // (2 * self._rate_numerator))
 
     def push(self, body, force, point=(0, 0, 0), frame='', torque=(0, 0, 0), duration=-1.0,
              start=None):
