@@ -5,12 +5,14 @@
     sim.pause()
     result = sim.step(100)         # 100 steps; the state reached
     result.states['box'].position  # numpy array, world [m]
+    result.stamp                   # rospy.Time of that state, on the lattice
 
 Everything goes through the node's public topics and services; nothing here
 knows its internals. States come as `BodyState` tuples of numpy arrays, keyed
 by body name in scene order.
 """
 import collections
+import math
 import struct
 import threading
 import warnings
@@ -19,7 +21,7 @@ import numpy as np
 import rospy
 import yaml
 from diagnostic_msgs.msg import DiagnosticArray
-from geometry_msgs.msg import Point, Vector3, Wrench
+from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
 from rigid_body_sim.msg import (BodyStateArray, ParticleWrench,
                                 StampedParticleWrenchArray)
 from rigid_body_sim.srv import (ApplyBodyWrench, ClearBodyWrenches, DeleteBody,
@@ -32,9 +34,15 @@ BodyState = collections.namedtuple('BodyState', [
     'name', 'position', 'orientation', 'linear_velocity', 'angular_velocity',
     'linear_momentum', 'angular_momentum', 'kinetic_energy'])
 
-# What a step returns: the stamp [s] of the state reached, the states, and
-# the node's state hash of them.
-StepResult = collections.namedtuple('StepResult', ['sim_time', 'states', 'state_hash', 'message'])
+# What a step returns: the stamp of the state reached, the states, the node's
+# state hash of them and its message. `stamp` is that rospy.Time exactly, as
+# the node stamps it on the time lattice; `sim_time` is the service's float
+# seconds of it, not exact: a double at 1.8e9 s resolves only 2.4e-7 s.
+StepResult = collections.namedtuple('StepResult', ['sim_time', 'states', 'state_hash', 'message',
+                                                   'stamp'])
+
+# A wrench on a whole body for the steps of one call (see body_wrench()).
+BodyWrench = collections.namedtuple('BodyWrench', ['body', 'force', 'torque', 'point', 'frame'])
 
 _FNV_OFFSET_BASIS = 0xcbf29ce484222325
 _FNV_PRIME = 0x100000001b3
@@ -88,9 +96,36 @@ def particle_wrench(body, particle=0, force=(0, 0, 0), torque=(0, 0, 0), frame='
     return msg
 
 
+def body_wrench(body, force=(0, 0, 0), torque=(0, 0, 0), point=(0, 0, 0), frame=''):
+    """A BodyWrench for SimClient.step(): `force` [N] at `point` of `body`
+    (body frame [m], (0, 0, 0) = the COM), `torque` [N m] a pure couple; axes
+    of `frame` ('' = world, the body's name = its own axes)."""
+    return BodyWrench(body, tuple(force), tuple(torque), tuple(point), frame)
+
+
+def _rate_fraction(rate):
+    """`rate` [Hz] as the node's time lattice takes it: (numerator,
+    denominator) with the fewest decimals, at most nine, that write it to
+    1e-9 relative."""
+    for decimals in range(10):
+        scaled = rate * 10.0 ** decimals
+        numerator = math.floor(scaled)
+        if scaled - numerator >= 0.5:  # llround: half away from zero
+            numerator += 1
+        if abs(scaled - numerator) <= 1e-9 * scaled:
+            break
+    return numerator, 10 ** decimals
+
+
+def _stamp(msg_stamp):
+    """A message's stamp as a rospy.Time, exact."""
+    return rospy.Time(msg_stamp.secs, msg_stamp.nsecs)
+
+
 class SimClient(object):
     """The node `node` (default /rigid_body_sim) seen from a test. Waits for
-    its services (at most `timeout` s) and keeps the latest ~bodies message."""
+    its services (at most `timeout` s) and keeps the latest ~bodies message.
+    `rate` is the node's ~rate [Hz] and `dt` = 1 / rate its step [s]."""
 
     def __init__(self, node='/rigid_body_sim', timeout=30.0):
         self.node = rospy.resolve_name(node)
@@ -98,6 +133,9 @@ class SimClient(object):
         self._latest = None
         self._diagnostics = {}
         self.wait_for_node(timeout)
+        self.rate = rospy.get_param(self._name('rate'), 1000)  # the node's default
+        self.dt = 1.0 / self.rate
+        self._rate_numerator, self._rate_denominator = _rate_fraction(self.rate)
         self._services = {}
         for name, srv in (('set_paused', SetBool), ('step_with_wrenches', StepWithWrenches),
                           ('reset', Empty), ('clear_wrenches', Empty),
@@ -131,17 +169,40 @@ class SimClient(object):
     def resume(self):
         self._call('set_paused', False)
 
-    def step(self, steps=1):
-        """`steps` steps while paused; a StepResult."""
-        return self.step_with_wrenches([], steps)
+    def step(self, steps=1, body_wrenches=()):
+        """`steps` steps while paused; a StepResult. `body_wrenches`
+        (BodyWrench, see body_wrench()) act on exactly these steps."""
+        return self.step_with_wrenches([], steps, body_wrenches)
 
-    def step_with_wrenches(self, wrenches, steps=1):
+    def step_with_wrenches(self, wrenches, steps=1, body_wrenches=()):
         """Holds `wrenches` (ParticleWrench messages, see particle_wrench())
         as one array, then `steps` steps while paused; a StepResult. Rejected
-        entries are named in its message; RuntimeError if no step was taken."""
+        entries are named in its message; RuntimeError if no step was taken.
+
+        Each of `body_wrenches` (BodyWrench, see body_wrench()) becomes a
+        ~apply_body_wrench job from the next step over a window that ends
+        half a step before the step after these, so it acts on exactly these
+        steps. The jobs are added before the steps: when the node refuses
+        one (RuntimeError with its message), no step is taken but the jobs
+        before it stay; when it refuses the steps (not paused), all of them
+        stay. A body wrench held across calls is push() (until cleared, or
+        for a duration) or a message on ~<body>/wrench."""
+        if steps < 1:
+            raise ValueError('steps must be >= 1, got %r' % (steps,))
+        for wrench in body_wrenches:
+            self._call('apply_body_wrench', wrench.body, wrench.frame, Point(*wrench.point),
+                       Wrench(force=Vector3(*wrench.force), torque=Vector3(*wrench.torque)),
+                       rospy.Time(), self._window(steps))
         response = self._call('step_with_wrenches', list(wrenches), steps)
         return StepResult(response.sim_time, to_states(response.states), response.state_hash,
-                          response.message)
+                          response.message, _stamp(response.states.header.stamp))
+
+    def _window(self, steps):
+        """(steps - 1/2) dt as a rospy.Duration, rounded half up to the
+        nanosecond: the node compares times in float seconds, and half a step
+        keeps its window's end clear of the step after these."""
+        numerator = (2 * steps - 1) * 10 ** 9 * self._rate_denominator
+        return rospy.Duration(0, (numerator + self._rate_numerator) // (2 * self._rate_numerator))
 
     def push(self, body, force, point=(0, 0, 0), frame='', torque=(0, 0, 0), duration=-1.0,
              start=None):
@@ -153,8 +214,23 @@ class SimClient(object):
                    start if start is not None else rospy.Time(),
                    rospy.Duration.from_sec(duration))
 
-    def clear_wrenches(self, body=''):
-        """Drops the wrenches of `body` ('' = every body)."""
+    def set_body_state(self, body, position=(0, 0, 0), orientation=(0, 0, 0, 1),
+                       linear_velocity=(0, 0, 0), angular_velocity=(0, 0, 0)):
+        """~set_body_state: the COM's `position` [m], `orientation` (x, y, z,
+        w; normalised by the node), `linear_velocity` [m/s] and
+        `angular_velocity` [rad/s], world axes. RuntimeError with the node's
+        message when refused."""
+        self._call('set_body_state', body,
+                   Pose(position=Point(*position), orientation=Quaternion(*orientation)),
+                   Twist(linear=Vector3(*linear_velocity), angular=Vector3(*angular_velocity)))
+
+    def clear_wrenches(self):
+        """~clear_wrenches: drops every held wrench and job."""
+        self._call('clear_wrenches')
+
+    def clear_body_wrenches(self, body=''):
+        """~clear_body_wrenches: drops the wrenches and jobs of `body` ('' =
+        every body)."""
         self._call('clear_body_wrenches', body)
 
     def reset(self):
@@ -186,6 +262,10 @@ class SimClient(object):
             if not self._lock.wait_for(lambda: self._latest is not None, timeout):
                 raise RuntimeError('no message on %s within %g s' % (self._name('bodies'), timeout))
             return self._latest
+
+    def stamp(self, timeout=10.0):
+        """The stamp of the last ~bodies message, an exact rospy.Time."""
+        return _stamp(self.latest(timeout).header.stamp)
 
     def states(self, timeout=10.0):
         """The last published states: body name -> BodyState."""

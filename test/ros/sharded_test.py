@@ -82,7 +82,7 @@ class Sharded(unittest.TestCase):
         self.assertEqual(publishers.get('/clock'), ['/rigid_body_sim_0'])
 
         with self.assertRaisesRegex(RuntimeError, "'b1' is simulated by shard 1 of 2"):
-            self.clients['/rigid_body_sim_0'].clear_wrenches('b1')
+            self.clients['/rigid_body_sim_0'].clear_body_wrenches('b1')
         spawn = rospy.ServiceProxy('/rigid_body_sim_1/spawn_body', SpawnBody)
         response = spawn('{name: c4, particles: [{mass: 1.0, position: [0, 0, 0]}]}')
         self.assertFalse(response.success)
