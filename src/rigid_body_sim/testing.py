@@ -117,6 +117,24 @@ def _rate_fraction(rate):
     return numerator, 10 ** decimals
 
 
+def _window(steps, rate_fraction):
+    """(steps - 1/2) dt as a rospy.Duration, rounded half up to the
+    nanosecond, for a node at `rate_fraction` (see _rate_fraction()): the node
+    compares times in float seconds, and half a step keeps the window's end
+    clear of the step after these."""
+    rate_numerator, rate_denominator = rate_fraction
+    numerator = (2 * steps - 1) * 10 ** 9 * rate_denominator
+    return rospy.Duration(0, (numerator + rate_numerator) // (2 * rate_numerator))
+
+
+def _apply_for_steps(apply_body_wrench, wrench, steps, rate_fraction):
+    """A BodyWrench as a ~apply_body_wrench job on exactly the next `steps`
+    steps; the service's response."""
+    return apply_body_wrench(wrench.body, wrench.frame, Point(*wrench.point),
+                             Wrench(force=Vector3(*wrench.force), torque=Vector3(*wrench.torque)),
+                             rospy.Time(), _window(steps, rate_fraction))
+
+
 def _stamp(msg_stamp):
     """A message's stamp as a rospy.Time, exact."""
     return rospy.Time(msg_stamp.secs, msg_stamp.nsecs)
@@ -135,7 +153,7 @@ class SimClient(object):
         self.wait_for_node(timeout)
         self.rate = rospy.get_param(self._name('rate'), 1000)  # the node's default
         self.dt = 1.0 / self.rate
-        self._rate_numerator, self._rate_denominator = _rate_fraction(self.rate)
+        self._rate_fraction = _rate_fraction(self.rate)
         self._services = {}
         for name, srv in (('set_paused', SetBool), ('step_with_wrenches', StepWithWrenches),
                           ('reset', Empty), ('clear_wrenches', Empty),
@@ -158,7 +176,9 @@ class SimClient(object):
         rospy.wait_for_service(self._name('step_with_wrenches'), timeout)
 
     def _call(self, service, *args):
-        response = self._services[service](*args)
+        return self._check(self._services[service](*args), service)
+
+    def _check(self, response, service):
         if hasattr(response, 'success') and not response.success:
             raise RuntimeError('%s: %s' % (self._name(service), response.message))
         return response
@@ -190,19 +210,11 @@ class SimClient(object):
         if steps < 1:
             raise ValueError('steps must be >= 1, got %r' % (steps,))
         for wrench in body_wrenches:
-            self._call('apply_body_wrench', wrench.body, wrench.frame, Point(*wrench.point),
-                       Wrench(force=Vector3(*wrench.force), torque=Vector3(*wrench.torque)),
-                       rospy.Time(), self._window(steps))
+            self._check(_apply_for_steps(self._services['apply_body_wrench'], wrench, steps,
+                                         self._rate_fraction), 'apply_body_wrench')
         response = self._call('step_with_wrenches', list(wrenches), steps)
         return StepResult(response.sim_time, to_states(response.states), response.state_hash,
                           response.message, _stamp(response.states.header.stamp))
-
-    def _window(self, steps):
-        """(steps - 1/2) dt as a rospy.Duration, rounded half up to the
-        nanosecond: the node compares times in float seconds, and half a step
-        keeps its window's end clear of the step after these."""
-        numerator = (2 * steps - 1) * 10 ** 9 * self._rate_denominator
-        return rospy.Duration(0, (numerator + self._rate_numerator) // (2 * self._rate_numerator))
 
     def push(self, body, force, point=(0, 0, 0), frame='', torque=(0, 0, 0), duration=-1.0,
              start=None):
@@ -287,13 +299,24 @@ class SimClient(object):
 class LockstepController(object):
     """Answers every cycle of a node running with ~lockstep: `control(states,
     stamp)` gets each ~bodies message's states (body name -> BodyState) and
-    its stamp and returns the ParticleWrench messages to hold (an empty list
-    or None: nothing). List this node's name (rospy.get_name()) in the
-    simulator's ~lockstep_publishers."""
+    its stamp and returns what to apply (an empty list or None: nothing):
+    ParticleWrench messages (see particle_wrench()), held as on
+    ~particle_wrenches, and BodyWrench tuples (see body_wrench()), each acting
+    on exactly the steps up to the next cycle (a ~apply_body_wrench job,
+    added before the answer is sent, so a run repeats bit for bit). A body
+    wrench is thus the command of one cycle: an answer that comes after the
+    node's ~lockstep_timeout leaves those steps without it. List this node's
+    name (rospy.get_name()) in the simulator's ~lockstep_publishers."""
 
     def __init__(self, control, node='/rigid_body_sim'):
         self.node = rospy.resolve_name(node)
         self._control = control
+        rate = rospy.get_param(self.node + '/rate', 1000)  # the node's defaults
+        publish_rate = rospy.get_param(self.node + '/publish_rate', 100)
+        self._rate_fraction = _rate_fraction(rate)
+        self._cycle_steps = max(1, int(math.floor(rate / publish_rate + 0.5)))  # the node's llround
+        self._apply_body_wrench = rospy.ServiceProxy(self.node + '/apply_body_wrench', ApplyBodyWrench,
+                                                     persistent=True)
         # Publisher first: the simulator starts once both connections exist.
         # queue_size None publishes in the callback's thread, without the
         # hand-over to a queue thread that would add to every cycle (rospy
@@ -308,9 +331,17 @@ class LockstepController(object):
     def _on_bodies(self, msg):
         answer = StampedParticleWrenchArray()
         answer.header.stamp = msg.header.stamp
-        answer.wrenches = list(self._control(to_states(msg), msg.header.stamp) or [])
+        for item in self._control(to_states(msg), msg.header.stamp) or []:
+            if isinstance(item, BodyWrench):
+                response = _apply_for_steps(self._apply_body_wrench, item, self._cycle_steps,
+                                            self._rate_fraction)
+                if not response.success:
+                    rospy.logwarn_throttle(1.0, '%s/apply_body_wrench: %s' % (self.node, response.message))
+            else:
+                answer.wrenches.append(item)
         self._answers.publish(answer)
 
     def stop(self):
         self._bodies.unregister()
         self._answers.unregister()
+        self._apply_body_wrench.close()

@@ -64,9 +64,16 @@ void RemoveBodyFrame(const std::string& name, WrenchFrames* frames) {
   frames->particle_counts.erase(frames->particle_counts.begin() + static_cast<std::ptrdiff_t>(body));
 }
 
+std::string QuotedName(const std::string& name) {
+  // A name from a request may be megabytes long: its answer quotes the start.
+  constexpr std::size_t kQuotedBytes = 128;
+  if (name.size() <= kQuotedBytes) return "'" + name + "'";
+  return "'" + name.substr(0, kQuotedBytes) + "...' (" + std::to_string(name.size()) + " bytes)";
+}
+
 std::string NotHereMessage(const std::string& body, const WrenchFrames& frames) {
   const auto other = frames.other_shard_bodies.find(body);
-  if (other == frames.other_shard_bodies.end()) return "unknown body '" + body + "'";
+  if (other == frames.other_shard_bodies.end()) return "unknown body " + QuotedName(body);
   return "body '" + body + "' is simulated by shard " + std::to_string(other->second) + " of " +
          std::to_string(frames.shard_count);
 }
@@ -83,7 +90,7 @@ std::optional<core::WrenchAxes> AxesOfFrame(const std::string& frame_id, const s
 
 std::string UnknownFrameMessage(const std::string& frame_id, const std::string& body,
                                 const WrenchFrames& frames) {
-  return "unknown frame_id '" + frame_id + "' for body '" + body + "' (use '', '" +
+  return "unknown frame_id " + QuotedName(frame_id) + " for body " + QuotedName(body) + " (use '', '" +
          frames.world_frame + "' or '" + BodyFrameId(frames.tf_prefix, body) + "')";
 }
 

@@ -15,7 +15,9 @@ orientation turns body x, y, z into world y, z, x exactly):
   clear_body_wrenches(body) on that body alone;
 - StepResult.stamp and SimClient.stamp() are the published header's stamp
   exactly, on the time lattice; sim_time is its to_sec();
-- the client snippets of README.md and doc/testing.md run as written.
+- the client snippets of README.md and doc/testing.md run as written;
+- a body wrench in a LockstepController's answer acts on exactly the steps
+  up to the next cycle.
 """
 import os
 import re
@@ -28,11 +30,14 @@ import numpy as np
 import rospkg
 import rospy
 import rostest
-from rigid_body_sim.testing import SimClient, body_wrench, particle_wrench, state_hash
+from rigid_body_sim.testing import (LockstepController, SimClient, body_wrench, particle_wrench,
+                                    state_hash)
 
 PKG = 'rigid_body_sim'
 NODE = '/rigid_body_sim'
 RATE_HZ = 300                     # ~rate of client.test
+LOCKSTEP_NODE = '/lockstep_sim'   # 1 kHz, publishing at 100 Hz
+LOCKSTEP_CYCLE_NS = 10000000
 EPS = np.finfo(float).eps
 BOX_MASS = 2.0                    # the box of client.test
 BOX_SIZE = np.array([0.3, 0.2, 0.1])
@@ -273,6 +278,32 @@ class Client(unittest.TestCase):
                                  stderr=subprocess.PIPE, universal_newlines=True,
                                  timeout=SNIPPET_TIMEOUT)
             self.assertEqual(run.returncode, 0, '%s:\n%s\n%s' % (document, block, run.stderr))
+
+
+    def test_a_body_wrench_in_a_lockstep_answer_acts_until_the_next_cycle(self):
+        momentum = {}  # stamp [ns] -> lockstep_sim's puck's p_y
+        pushed_at = []
+
+        def control(states, stamp):
+            momentum[stamp.to_nsec()] = states['puck'].linear_momentum[1]
+            if not pushed_at and len(momentum) >= 3:
+                pushed_at.append(stamp.to_nsec())
+                return [body_wrench('puck', force=(0.0, 3.0, 0.0))]
+            return []
+
+        controller = LockstepController(control, LOCKSTEP_NODE)
+        deadline = time.monotonic() + 20.0
+        while time.monotonic() < deadline and not (pushed_at and
+                                                    pushed_at[0] + 2 * LOCKSTEP_CYCLE_NS in momentum):
+            time.sleep(0.05)
+        controller.stop()
+        self.assertTrue(pushed_at, 'no cycle reached the controller')
+        start = pushed_at[0]
+        self.assertIn(start + 2 * LOCKSTEP_CYCLE_NS, momentum, 'the cycles after the push did not come')
+        # 3 N on the 10 steps of that cycle, none on the next.
+        self.assertAlmostEqual(momentum[start + LOCKSTEP_CYCLE_NS] - momentum[start], 3.0 * 10 * 1e-3,
+                               delta=1e-15)
+        self.assertEqual(momentum[start + 2 * LOCKSTEP_CYCLE_NS], momentum[start + LOCKSTEP_CYCLE_NS])
 
 
 if __name__ == '__main__':

@@ -24,7 +24,7 @@ import rostest
 from diagnostic_msgs.msg import DiagnosticArray
 from dynamic_reconfigure.msg import Config, DoubleParameter
 from dynamic_reconfigure.srv import Reconfigure
-from rigid_body_sim.srv import SpawnBody, StepWithWrenches
+from rigid_body_sim.srv import DeleteBody, SpawnBody, StepWithWrenches
 from rigid_body_sim.testing import particle_wrench
 from std_srvs.srv import SetBool
 
@@ -135,6 +135,15 @@ class HostileInput(unittest.TestCase):
         self.refused('1 MB string aliased 1,000x', long_string_aliased(), 'expands to more than')
         self.refused('nesting 100,000 deep', deep_nesting(), 'nested deeper than 16')
         self.refused('text of 16 MiB + 1 byte', ' ' * (16 * MIB + 1), 'more than 16 MiB')
+
+    def test_1_a_name_of_16_mib(self):
+        delete = rospy.ServiceProxy(NODE + '/delete_body', DeleteBody)
+        name = 'x' * (16 * MIB)
+        response, before, after = self.measure('delete_body, 16 MiB name', len(name),
+                                               lambda: delete(name))
+        self.assertFalse(response.success)
+        self.assertLess(len(response.message), 300)
+        self.assertLessEqual(after - before, GIVEN_BACK)
 
     def test_2_the_largest_body_is_taken_off_the_stepping_thread(self):
         text = particles(100000)

@@ -107,5 +107,12 @@ TEST(WrenchIntake, ListsEachRejectedEntryByIndexForAService) {
   EXPECT_EQ(intake.rejected_messages(), 3u);  // counted as on the topic
 }
 
+TEST(WrenchIntake, AnswersQuoteTheStartOfALongName) {
+  EXPECT_EQ(QuotedName("box"), "'box'");
+  const std::string long_name(10 << 20, 'x');
+  const std::string message = NotHereMessage(long_name, WrenchFrames{});
+  EXPECT_EQ(message, "unknown body '" + std::string(128, 'x') + "...' (10485760 bytes)");
+}
+
 }  // namespace
 }  // namespace rigid_body_sim

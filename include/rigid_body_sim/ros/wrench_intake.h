@@ -57,6 +57,8 @@ WrenchFrames MakeWrenchFrames(const core::World& world, const std::string& world
                               const std::string& tf_prefix,
                               std::unordered_map<std::string, std::uint32_t> other_shard_bodies = {},
                               std::uint32_t shard_count = 1);
+// `name` in single quotes, its first 128 bytes only when it is longer.
+std::string QuotedName(const std::string& name);
 // Why `body` is not one of this node's: "unknown body 'x'", or, for a body of
 // another shard, "body 'x' is simulated by shard 1 of 2".
 std::string NotHereMessage(const std::string& body, const WrenchFrames& frames);
