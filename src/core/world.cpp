@@ -26,9 +26,9 @@ const double kRateBoundFactor = std::cbrt(2.0);
 // enough that their states are still in cache when they are checked.
 constexpr std::size_t kBatch = 64;
 
-// Bodies a thread takes at a time in a Step: ~30 µs of work for free bodies,
-// long against taking a block (one atomic add), short against a step of a
-// scene large enough to want threads.
+// Bodies a thread takes at a time in a Step: tens of microseconds of work for
+// free bodies (bench/README.md, "Threads"), long against taking a block (one
+// atomic add), short against a step of a scene large enough to want threads.
 constexpr std::size_t kBodiesPerBlock = 1024;
 
 std::vector<std::size_t> ParticleCounts(const std::vector<BodyModel>& models) {

@@ -30,8 +30,8 @@ constexpr std::size_t kStateHashValuesPerBody = 13;
 void StateHashValues(const World& world, std::vector<double>* values);
 std::uint64_t HashOfValues(const std::vector<double>& values);
 
-// HashOfValues of StateHashValues: about 1.2 ns per byte hashed, 0.12 ms at
-// 1,000 bodies (FNV-1a is one multiply per byte, in sequence).
+// HashOfValues of StateHashValues (FNV-1a: one multiply per byte, in
+// sequence; its cost is in bench/README.md, "State hash").
 std::uint64_t StateHash(const World& world);
 // 16 lower-case hexadecimal digits.
 std::string HashHex(std::uint64_t hash);

@@ -1,8 +1,9 @@
 // The state hash of a published cycle for diagnostics (doc/node.md, "State
-// hash"), computed by a thread of its own: FNV-1a takes about 1.2 ns per
-// byte, 1.2 ms at 10,000 bodies, four times a step. The stepping thread only copies
-// the hashed values (core::StateHashValues, 104 bytes per body) of the cycle
-// before each diagnostics report.
+// hash"), computed by a thread of its own: FNV-1a is one multiply per byte in
+// sequence, longer than a step at 10,000 bodies (bench/README.md, "State
+// hash"). The stepping thread only copies the hashed values
+// (core::StateHashValues, 104 bytes per body) of the cycle before each
+// diagnostics report.
 #pragma once
 
 #include <condition_variable>

@@ -105,8 +105,9 @@ double StartTimeOf(const ros::Time& stamp, const ros::Time& start_stamp, double 
 
 class WrenchIntake {
  public:
-  // Entries of one array taken per message (about 1 ms of work), so that one
-  // huge array cannot stall the stepping loop; the rest are rejected unread.
+  // Entries of one array taken per message (on the order of a step's wall
+  // time at 1 kHz), so that one huge array cannot stall the stepping loop;
+  // the rest are rejected unread.
   static constexpr std::size_t kMaxArrayEntries = 10000;
 
   explicit WrenchIntake(WrenchFrames frames) : frames_(std::move(frames)) {}

@@ -22,8 +22,8 @@ constexpr std::size_t kMaxYamlTextBytes = 16u << 20;
 // entry needs four.
 constexpr int kMaxYamlDepth = 16;
 // The memory the values of one text may take once built [bytes], estimated
-// from their kinds and string lengths with aliases expanded; a
-// 100,000-particle body needs about 40 MiB.
+// from their kinds and string lengths with aliases expanded; room for the
+// largest body (doc/node.md, "Bodies at run time").
 constexpr std::size_t kMaxYamlValueBytes = 48u << 20;
 
 // Scalars become what rosparam makes of them: integers, doubles (.inf and
