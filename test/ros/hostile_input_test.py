@@ -11,6 +11,10 @@ back (VmHWM), and its resident memory read before and a moment after
 - the diagnostics' catch_up_limit_hits did not grow: no wake-up of the
   stepping loop came more than 0.1 s late while the request was read.
 A table of the figures is printed (rostest keeps it in the test's log).
+Under the sanitizers (ASAN_OPTIONS set, scripts/sanitizers.sh) the node runs
+on ASan's allocator, whose quarantine keeps freed memory, and several times
+slower: there the requests and their answers are checked, not the memory or
+the lateness.
 """
 import io
 import os
@@ -32,6 +36,7 @@ NODE = '/rigid_body_sim'
 MIB = 1 << 20
 PEAK_BOUND = 64 * MIB     # beyond the request's own size
 GIVEN_BACK = 2 * MIB      # what a refused request may leave behind
+INSTRUMENTED = 'ASAN_OPTIONS' in os.environ
 
 
 def billion_laughs():
@@ -120,6 +125,8 @@ class HostileInput(unittest.TestCase):
         self.next_report()
         late = self.status('catch_up_limit_hits') - late_before
         self.rows.append((name, size / MIB, before / MIB, peak / MIB, after / MIB, late))
+        if INSTRUMENTED:
+            return response, 0, 0
         self.assertLessEqual(peak - before, PEAK_BOUND + size, name)
         self.assertEqual(late, 0, '%s: %d wake-ups more than 0.1 s late' % (name, late))
         return response, before, after
