@@ -1,39 +1,135 @@
 #!/usr/bin/python3
-"""Soak test: the node on the default scene at
-rate 1000 for DURATION s (default 1 h) under random wrenches, valid and
-invalid (NaN, infinite, unknown body, particle out of range, unknown frame),
-on every body but `t_handle`, which stays torque-free so its |L| and energy
-drift stay measurable. Every minute: node RSS, overruns, rejected messages,
-t_handle's drift (from /diagnostics) and the worst |q| − 1 seen on ~bodies.
-Fails if the node dies, if RSS grows by more than 1 MiB after the first
-minute, or if a published quaternion is off unit length by more than 1e-12.
+"""Soak test, in one of two modes.
 
-usage: soak.py [--workspace WS] [--duration 3600] [--rate 200]
+Wrenches (the default): the node on the default scene at rate 1000 for
+DURATION s (default 1 h) under random wrenches, valid and invalid (NaN,
+infinite, unknown body, particle out of range, unknown frame), on every body
+but `t_handle`, which stays torque-free so its |L| and energy drift stay
+measurable. Every minute: node RSS, overruns, rejected messages, t_handle's
+drift (from /diagnostics) and the worst |q| − 1 seen on ~bodies. Fails if the
+node dies, if RSS grows by more than MAX_GROWTH KiB after the first minute, or
+if a published quaternion is off unit length by more than 1e-12.
+
+Spawn and delete (--spawn-delete): the node on the default scene (with
+~per_body_topics as given) takes CYCLES ~spawn_body + ~delete_body pairs of a
+small box, back to back over two persistent service connections, each cycle's
+body named anew (soak_<k>); node RSS every SAMPLE_EVERY cycles and once more
+SETTLE s after the last. Prints the first, last and after RSS and the growth
+per cycle; fails if the node dies, a call is refused, or RSS after the cycles
+exceeds the first sample (before any cycle) by more than MAX_GROWTH KiB.
+--node-prefix runs the node under a tool, e.g. "heaptrack -o /tmp/sd".
+
+usage: soak.py [--workspace WS] [--duration 3600] [--rate 200] [--max-growth 1024]
+       soak.py --spawn-delete [--cycles 100000] [--sample-every 1000] [--settle 10]
+               [--per-body-topics true|false] [--node-prefix CMD] [--max-growth 1024]
 
 The script runs itself again in the workspace's environment (devel/setup.bash
-sourced, bench/node_harness.py); roslaunch starts the master on --port.
+sourced, bench/node_harness.py); roslaunch (wrenches) or the script (spawn and
+delete) starts the master on --port.
 """
 import argparse
 import math
 import os
 import random
+import shlex
 import sys
+import tempfile
 import time
 
-from node_harness import (REPO, Diagnostics, add_workspace_argument, launch_default_scene, node_pid,
-                          reexec_in_workspace, rss_kib, stop_launch, wait_for_scene)
+from node_harness import (NODE_NAME, NS, REPO, Diagnostics, Processes, add_workspace_argument, devel_program,
+                          launch_default_scene, node_pid, reexec_in_workspace, rss_kib, start_master, stop_launch,
+                          wait_for_scene)
 
 parser = argparse.ArgumentParser()
 add_workspace_argument(parser)
 parser.add_argument("--duration", type=float, default=3600.0)
 parser.add_argument("--rate", type=float, default=200.0, help="wrench messages per second")
+parser.add_argument("--spawn-delete", action="store_true", help="spawn and delete bodies instead of wrenches")
+parser.add_argument("--cycles", type=int, default=100000, help="spawn + delete pairs (--spawn-delete)")
+parser.add_argument("--sample-every", type=int, default=1000, help="cycles between RSS samples (--spawn-delete)")
+parser.add_argument("--settle", type=float, default=10.0,
+                    help="s from the last cycle to the after sample (--spawn-delete)")
+parser.add_argument("--per-body-topics", choices=["true", "false"], default="true",
+                    help="the node's ~per_body_topics (--spawn-delete)")
+parser.add_argument("--node-prefix", default="", help="words before the node's command (--spawn-delete)")
+parser.add_argument("--max-growth", type=int, default=1024, help="RSS growth [KiB] that fails the soak")
 parser.add_argument("--port", type=int, default=11431)
-parser.add_argument("--out", default=os.path.join(REPO, "bench", "results", "soak.md"))
+parser.add_argument("--out", default=None,
+                    help="report (default bench/results/soak.md, or soak_spawn_delete.md with --spawn-delete)")
 args = parser.parse_args()
-reexec_in_workspace(args.workspace, args.port)
+workspace = reexec_in_workspace(args.workspace, args.port)
+if args.out is None:
+    args.out = os.path.join(REPO, "bench", "results", "soak_spawn_delete.md" if args.spawn_delete else "soak.md")
 
 import rospy  # noqa: E402  (in the workspace's environment)
+import yaml  # noqa: E402
 from rigid_body_sim.msg import BodyStateArray, ParticleWrench  # noqa: E402
+from rigid_body_sim.srv import DeleteBody, SpawnBody  # noqa: E402
+
+SMALL_BOX = ("{name: %s, shape: box, mass: 1.0, size: [0.1, 0.1, 0.1], resolution: 2, "
+             "position: [0.0, 0.0, 2.0]}")
+
+
+def write_report(text):
+    print(text)
+    os.makedirs(os.path.dirname(args.out), exist_ok=True)
+    open(args.out, "w").write(text)
+
+
+def spawn_delete_soak():
+    procs = Processes()
+    log_dir = tempfile.mkdtemp(prefix="soak_logs_")
+    try:
+        start_master(procs, args.port, 0, log_dir)
+        rospy.init_node("soak_driver", anonymous=True)
+        scene = yaml.safe_load(open(os.path.join(REPO, "config", "default_scene.yaml")))
+        scene["per_body_topics"] = args.per_body_topics == "true"
+        rospy.set_param(NS, scene)
+        node = procs.start(shlex.split(args.node_prefix) +
+                           [devel_program(workspace, "rigid_body_sim_node"), "__name:=" + NODE_NAME],
+                           os.path.join(log_dir, "node.log"))
+        rospy.wait_for_service(NS + "/spawn_body", timeout=60)
+        rospy.wait_for_service(NS + "/delete_body", timeout=10)
+        pid = node_pid()
+        spawn = rospy.ServiceProxy(NS + "/spawn_body", SpawnBody, persistent=True)
+        delete = rospy.ServiceProxy(NS + "/delete_body", DeleteBody, persistent=True)
+        rows = [(0, time.monotonic(), rss_kib(pid))]
+        print("%8d cycles  RSS %d KiB" % (0, rows[0][2]), flush=True)
+        for k in range(1, args.cycles + 1):
+            name = "soak_%d" % k
+            for call, request in ((spawn, SMALL_BOX % name), (delete, name)):
+                response = call(request)
+                if not response.success:
+                    sys.exit("cycle %d: %s" % (k, response.message))
+            if k % args.sample_every == 0 or k == args.cycles:
+                rows.append((k, time.monotonic(), rss_kib(pid)))
+                print("%8d cycles  RSS %d KiB  %.2f ms/cycle" % (
+                    k, rows[-1][2], 1e3 * (rows[-1][1] - rows[-2][1]) / (k - rows[-2][0])), flush=True)
+        spawn.close()
+        delete.close()
+        time.sleep(args.settle)
+        if node.poll() is not None:
+            sys.exit("the node died (log: %s)" % log_dir)
+        after = rss_kib(pid)
+        first, last = rows[0][2], rows[-1][2]
+        growth = after - first
+        lines = ["| cycles | RSS [KiB] |", "|---|---|"]
+        lines += ["| %d | %d |" % (r[0], r[2]) for r in rows]
+        lines.append("| %.0f s after | %d |" % (args.settle, after))
+        lines.append("")
+        lines.append("%d spawn + delete cycles of a small box (per_body_topics %s), %.2f ms a cycle; RSS first %d, "
+                     "last %d, %.0f s after %d KiB: %+d KiB, %.1f bytes a cycle; load average at the end: %s" % (
+                         args.cycles, args.per_body_topics, 1e3 * (rows[-1][1] - rows[0][1]) / args.cycles,
+                         first, last, args.settle, after, growth, 1024.0 * (last - first) / args.cycles,
+                         open("/proc/loadavg").read().split()[0]))
+        write_report("\n".join(lines) + "\n")
+        return 0 if growth <= args.max_growth else 1
+    finally:
+        procs.stop_all()
+
+
+if args.spawn_delete:
+    sys.exit(spawn_delete_soak())
 
 launch = launch_default_scene(args.port)
 try:
@@ -102,10 +198,7 @@ try:
     lines.append("")
     lines.append("%d wrench messages sent (%.0f/s, ~25 %% invalid); RSS growth after the first minute: %d KiB; "
                  "load average at the end: %s" % (sent, args.rate, growth, open("/proc/loadavg").read().split()[0]))
-    text = "\n".join(lines) + "\n"
-    print(text)
-    os.makedirs(os.path.dirname(args.out), exist_ok=True)
-    open(args.out, "w").write(text)
-    sys.exit(0 if growth <= 1024 and worst_norm[0] <= 1e-12 else 1)
+    write_report("\n".join(lines) + "\n")
+    sys.exit(0 if growth <= args.max_growth and worst_norm[0] <= 1e-12 else 1)
 finally:
     stop_launch(launch)

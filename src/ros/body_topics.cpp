@@ -98,16 +98,21 @@ void BodyTopics::Work() {
 }
 
 void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
+  // A node handle keeps a weak_ptr to every publisher and subscriber made
+  // through it until it is destroyed, and a weak_ptr keeps its make_shared
+  // block allocated: made through private_nh_, the topics of every body ever
+  // advertised would stay in memory. This copy lets them go on return; the
+  // publishers and the subscriber hold node handles of their own.
+  ros::NodeHandle nh(private_nh_);
   const std::string& body = topics->body;
-  AdvertiseCounted<geometry_msgs::PoseStamped>(private_nh_, body + "/pose", topics, &topics->pose);
-  AdvertiseCounted<geometry_msgs::TwistStamped>(private_nh_, body + "/twist", topics, &topics->twist);
-  AdvertiseCounted<nav_msgs::Odometry>(private_nh_, body + "/odom", topics, &topics->odom);
-  AdvertiseCounted<sensor_msgs::Imu>(private_nh_, body + "/imu", topics, &topics->imu,
-                                     &step_record_subscribers_);
-  AdvertiseCounted<geometry_msgs::WrenchStamped>(private_nh_, body + "/applied_wrench", topics,
+  AdvertiseCounted<geometry_msgs::PoseStamped>(nh, body + "/pose", topics, &topics->pose);
+  AdvertiseCounted<geometry_msgs::TwistStamped>(nh, body + "/twist", topics, &topics->twist);
+  AdvertiseCounted<nav_msgs::Odometry>(nh, body + "/odom", topics, &topics->odom);
+  AdvertiseCounted<sensor_msgs::Imu>(nh, body + "/imu", topics, &topics->imu, &step_record_subscribers_);
+  AdvertiseCounted<geometry_msgs::WrenchStamped>(nh, body + "/applied_wrench", topics,
                                                  &topics->applied_wrench, &step_record_subscribers_);
   const WrenchCallback& on_wrench = on_wrench_;
-  topics->wrench = private_nh_.subscribe<geometry_msgs::WrenchStamped>(
+  topics->wrench = nh.subscribe<geometry_msgs::WrenchStamped>(
       body + "/wrench", kWrenchQueueSize,
       [&on_wrench, body](const geometry_msgs::WrenchStamped::ConstPtr& msg) { on_wrench(body, *msg); },
       ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());

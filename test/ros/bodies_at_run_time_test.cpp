@@ -10,6 +10,8 @@
 #include <atomic>
 #include <thread>
 
+#include <geometry_msgs/PoseStamped.h>
+#include <geometry_msgs/WrenchStamped.h>
 #include <rigid_body_sim/DeleteBody.h>
 #include <rigid_body_sim/SpawnBody.h>
 #include <ros/master.h>
@@ -93,6 +95,40 @@ TEST_F(BodiesAtRunTime, SpawnedBodyMovesFromTheNextStepWithItsTopics) {
                       10.0))
       << "the spawned body's topics never appeared";
   ASSERT_TRUE(Delete("ball").success);
+}
+
+// The node advertises a body's topics through a node handle that it drops at
+// once: they must go on working without it.
+TEST_F(BodiesAtRunTime, SpawnedBodysTopicsPublishAndTakeWrenches) {
+  auto& sim = TheSim();
+  ASSERT_TRUE(Spawn("{name: pushed, shape: sphere, mass: 0.5, radius: 0.05, position: [1.0, 0.0, 1.0], "
+                    "gravity_scale: 0.0}")
+                  .success);
+  ros::NodeHandle nh;
+  std::atomic<int> poses{0};
+  ros::Subscriber pose_sub = nh.subscribe<geometry_msgs::PoseStamped>(
+      sim.Name("pushed/pose"), 10, [&poses](const geometry_msgs::PoseStamped::ConstPtr&) { ++poses; });
+  ros::Publisher wrench_pub = nh.advertise<geometry_msgs::WrenchStamped>(sim.Name("pushed/wrench"), 10);
+  ASSERT_TRUE(WaitFor([&] { return pose_sub.getNumPublishers() > 0 && wrench_pub.getNumSubscribers() > 0; },
+                      10.0))
+      << "never connected to the spawned body's pose and wrench topics";
+  geometry_msgs::WrenchStamped wrench;
+  wrench.wrench.force.x = 0.5;
+  wrench_pub.publish(wrench);
+  rbs_test::SleepWall(rbs_test::kSettle);
+  rigid_body_sim::BodyStateArray s;
+  ASSERT_TRUE(sim.StepAndGet(10, &s));
+  ASSERT_NE(FindBody(s, "pushed"), nullptr);
+  EXPECT_NEAR(FindBody(s, "pushed")->linear_momentum.x, 0.5 * 10 * kDt, kRoundOff);
+  EXPECT_TRUE(WaitFor(
+      [&] {
+        if (poses > 0) return true;
+        sim.Step(1);  // paused, the node publishes after each ~step
+        return false;
+      },
+      5.0, 0.05))
+      << "no message on the spawned body's pose topic";
+  ASSERT_TRUE(Delete("pushed").success);
 }
 
 TEST_F(BodiesAtRunTime, BadEntriesAreRefusedAsAScene) {
