@@ -63,8 +63,8 @@ For each command run against the node:
     the hash of that message; `false`: messages flow again with later stamps;
   * `~set_body_state`: the body's next state has the requested position,
     orientation, linear and angular velocity.
-- the node's PID is the same at the end as at the start (with respawn on, a
-  crash would otherwise go unnoticed).
+- the node's PID is the same at the end as at the start (under
+  `respawn:=true` a crash would otherwise go unnoticed).
 
 A failure names the document, the line number and the command.
 """
