@@ -410,7 +410,7 @@ class ReadmeExamples(unittest.TestCase):
 
     def run_command(self, where, command, kind):
         proc = subprocess.Popen(['/bin/bash', '-c', command], stdout=subprocess.PIPE,
-                                stderr=subprocess.PIPE, process_group=0)
+                                stderr=subprocess.PIPE, start_new_session=True)
         limit = STREAM_SECONDS if kind == 'stream' else COMMAND_TIMEOUT
         timed_out = False
         try:
