@@ -31,7 +31,8 @@ fail() {
   fi
   exit 1
 }
-trap 'fail "\"$BASH_COMMAND\" exited $? (line $LINENO)"' ERR
+# A failing command substitution reports once, in the shell that runs it.
+trap '[ "$BASH_SUBSHELL" -gt 0 ] || fail "\"$BASH_COMMAND\" exited $? (line $LINENO)"' ERR
 
 # ---- in the install space (the script runs itself under env -i) ----------
 if [ "${1:-}" = "--in-install-space" ]; then
@@ -189,7 +190,7 @@ prefix="$(mktemp -d "${TMPDIR:-/tmp}/rbs_install_space.XXXXXX")"
 tmp="$(mktemp -d "${TMPDIR:-/tmp}/rbs_install_space_logs.XXXXXX")"
 old_prefix="$(sed -n 's/^CMAKE_INSTALL_PREFIX:PATH=//p' "$ws/build/CMakeCache.txt")"
 # Configured as the workspace was: without its own devel space in the prefix path.
-cmake_prefix_path="$(tr ':' '\n' <<< "${CMAKE_PREFIX_PATH:-}" | grep -v "^$ws/" | paste -sd: -)"
+cmake_prefix_path="$(tr ':' '\n' <<< "${CMAKE_PREFIX_PATH:-}" | { grep -v "^$ws/" || true; } | paste -sd: -)"
 restore() {
   if [ -n "$old_prefix" ]; then
     CMAKE_PREFIX_PATH="$cmake_prefix_path" cmake -DCMAKE_INSTALL_PREFIX="$old_prefix" \
