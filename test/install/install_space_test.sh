@@ -186,21 +186,23 @@ fi
 ws="$(cd "$1" && pwd)"
 [ -f "$ws/build/CMakeCache.txt" ] || fail "$ws/build is not a configured catkin build directory"
 start_time=$(date +%s)
-prefix="$(mktemp -d "${TMPDIR:-/tmp}/rbs_install_space.XXXXXX")"
-tmp="$(mktemp -d "${TMPDIR:-/tmp}/rbs_install_space_logs.XXXXXX")"
 old_prefix="$(sed -n 's/^CMAKE_INSTALL_PREFIX:PATH=//p' "$ws/build/CMakeCache.txt")"
 # Configured as the workspace was: without its own devel space in the prefix path.
 cmake_prefix_path="$(tr ':' '\n' <<< "${CMAKE_PREFIX_PATH:-}" | { grep -v "^$ws/" || true; } | paste -sd: -)"
+prefix="" tmp="" installing=""
 restore() {
-  if [ -n "$old_prefix" ]; then
+  if [ -n "$installing" ] && [ -n "$old_prefix" ]; then
     CMAKE_PREFIX_PATH="$cmake_prefix_path" cmake -DCMAKE_INSTALL_PREFIX="$old_prefix" \
-      "$ws/build" > "$tmp/restore.log" 2>&1 \
+      "$ws/build" > /dev/null 2>&1 \
       || echo "install_space_test: could not set $ws/build's install prefix back to $old_prefix" >&2
   fi
-  rm -rf "$prefix" "$tmp"
+  for dir in "$prefix" "$tmp"; do [ -z "$dir" ] || rm -rf "$dir"; done
 }
 trap restore EXIT
+prefix="$(mktemp -d "${TMPDIR:-/tmp}/rbs_install_space.XXXXXX")"
+tmp="$(mktemp -d "${TMPDIR:-/tmp}/rbs_install_space_logs.XXXXXX")"
 
+installing=1
 (cd "$ws" && CMAKE_PREFIX_PATH="$cmake_prefix_path" catkin_make install \
   -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_INSTALL_PREFIX="$prefix" -j"${RBS_JOBS:-2}") \
   > "$tmp/install.log" 2>&1 || fail "catkin_make install -DCMAKE_INSTALL_PREFIX=$prefix" "$tmp/install.log"
