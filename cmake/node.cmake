@@ -47,3 +47,7 @@ install(DIRECTORY include/${PROJECT_NAME}/
   DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})
 install(DIRECTORY launch config
   DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+# launch/sharded.launch's launch-prefix: $(find rigid_body_sim)/scripts/on_core.sh
+# resolves to this copy in an install space.
+install(PROGRAMS scripts/on_core.sh
+  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -1,6 +1,7 @@
 #!/bin/bash
 # The one test command: installs what is missing, builds, runs every test
-# (gtest for the core, rostest for the node) and exits non-zero on any failure.
+# (gtest for the core, rostest for the node, the Python 3.8 / C++17 check,
+# then the install space's test) and exits non-zero on any failure.
 set -euo pipefail
 # shellcheck source=scripts/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -15,3 +16,4 @@ roslaunch --nodes rigid_body_sim rigid_body_sim.launch > /dev/null
 rm -rf build/test_results
 catkin_make run_tests -j1
 catkin_test_results build/test_results
+bash "$repo/test/install/install_space_test.sh" "$ws"

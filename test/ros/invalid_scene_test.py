@@ -15,12 +15,19 @@ holds exactly one error line (rosconsole "[ERROR]" / "[FATAL]") naming the key
 and, for an entry of `bodies`, the entry (its name, or its index when the name
 is the problem). A valid scene serves as a control: the node must still be
 running after a few seconds.
+
+Through launch/rigid_body_sim.launch (roslaunch, on the test's master), an
+invalid scene file: with the default `respawn:=false` the launch ends by
+itself with one FATAL line and roslaunch reporting the node's exit code 1;
+with `respawn:=true` the launch keeps running and the node is retried every
+0.5 s, one FATAL line each time.
 """
 import math
 import os
 import re
 import signal
 import subprocess
+import tempfile
 import time
 import unittest
 
@@ -31,6 +38,14 @@ import rostest
 
 PKG = 'rigid_body_sim'
 EXIT_TIMEOUT = 15.0  # s a node gets to exit (start-up of a roscpp node is < 1 s)
+LAUNCH_TIMEOUT = 30.0  # s roslaunch gets to end (it first checks the log directory)
+RESPAWN_SECONDS = 4.0  # s a respawning launch runs: several 0.5 s retries
+INVALID_SCENE = """bodies:
+  - name: rod
+    particles:
+      - {mass: 1.0, position: [0.0, 0.0, 0.0]}
+      - {mass: -1.0, position: [0.2, 0.0, 0.0]}
+"""
 
 
 def particles(mass=1.0):
@@ -129,6 +144,51 @@ class InvalidScene(unittest.TestCase):
                 index is not None and re.search(r'(\[|\b)%d(\]|\b)' % index, line))
             self.assertTrue(named, 'error line does not name the entry (%r / index %r)%s'
                             % (entry, index, ctx))
+
+    def _launch(self, args, seconds):
+        """roslaunch of rigid_body_sim.launch with the invalid scene and `args`:
+        (exit code or None when still running after `seconds` s, stderr)."""
+        with tempfile.NamedTemporaryFile('w', suffix='.yaml') as scene:
+            scene.write(INVALID_SCENE)
+            scene.flush()
+            proc = subprocess.Popen(
+                ['roslaunch', PKG, 'rigid_body_sim.launch', 'scene:=' + scene.name] + args,
+                stdout=subprocess.PIPE, stderr=subprocess.PIPE, start_new_session=True)
+            try:
+                _, err = proc.communicate(timeout=seconds)
+                code = proc.returncode
+            except subprocess.TimeoutExpired:
+                code = None
+                os.killpg(proc.pid, signal.SIGINT)
+                try:
+                    _, err = proc.communicate(timeout=15.0)
+                except subprocess.TimeoutExpired:
+                    os.killpg(proc.pid, signal.SIGKILL)
+                    _, err = proc.communicate()
+        return code, err.decode(errors='replace')
+
+    @staticmethod
+    def _fatal_lines(text):
+        return [l for l in text.splitlines() if '[FATAL]' in l]
+
+    def test_launch_stops_without_respawn(self):
+        code, err = self._launch([], LAUNCH_TIMEOUT)
+        ctx = '\n--- roslaunch exit %s, stderr:\n%s' % (code, err)
+        self.assertIsNotNone(code, 'the launch did not end within %.0f s%s'
+                             % (LAUNCH_TIMEOUT, ctx))
+        fatal = self._fatal_lines(err)
+        self.assertEqual(len(fatal), 1, 'expected exactly one FATAL line%s' % ctx)
+        self.assertIn('mass', fatal[0], ctx)
+        self.assertRegex(err, r'REQUIRED process \[rigid_body_sim-\d+\] has died', ctx)
+        self.assertRegex(err, r'process has died \[pid \d+, exit code 1,', ctx)
+
+    def test_launch_retries_with_respawn(self):
+        code, err = self._launch(['respawn:=true'], RESPAWN_SECONDS)
+        ctx = '\n--- roslaunch exit %s, stderr:\n%s' % (code, err)
+        self.assertIsNone(code, 'with respawn:=true the launch must keep running%s' % ctx)
+        fatal = self._fatal_lines(err)
+        self.assertGreaterEqual(len(fatal), 2, 'expected the node retried%s' % ctx)
+        self.assertTrue(all('mass' in l for l in fatal), ctx)
 
     # ---- control ---------------------------------------------------------
 

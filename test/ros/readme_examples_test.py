@@ -63,8 +63,8 @@ For each command run against the node:
     the hash of that message; `false`: messages flow again with later stamps;
   * `~set_body_state`: the body's next state has the requested position,
     orientation, linear and angular velocity.
-- the node's PID is the same at the end as at the start (with respawn on, a
-  crash would otherwise go unnoticed).
+- the node's PID is the same at the end as at the start (under
+  `respawn:=true` a crash would otherwise go unnoticed).
 
 A failure names the document, the line number and the command.
 """
@@ -410,7 +410,7 @@ class ReadmeExamples(unittest.TestCase):
 
     def run_command(self, where, command, kind):
         proc = subprocess.Popen(['/bin/bash', '-c', command], stdout=subprocess.PIPE,
-                                stderr=subprocess.PIPE, process_group=0)
+                                stderr=subprocess.PIPE, start_new_session=True)
         limit = STREAM_SECONDS if kind == 'stream' else COMMAND_TIMEOUT
         timed_out = False
         try:
