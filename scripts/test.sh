@@ -1,11 +1,13 @@
 #!/bin/bash
-# The one test command: installs what is missing, builds, runs every test
-# (gtest for the core, rostest for the node, the Python 3.8 / C++17 check,
-# then the install space's test) and exits non-zero on any failure.
+# The one test command: installs what is missing, checks the C++ formatting
+# (scripts/format_check.sh), builds, runs every test (gtest for the core,
+# rostest for the node, the Python 3.8 / C++17 check, then the install
+# space's test) and exits non-zero on any failure.
 set -euo pipefail
 # shellcheck source=scripts/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 bash "$repo/scripts/install_deps.sh"
+bash "$repo/scripts/format_check.sh"
 bash "$repo/scripts/build.sh"
 cd "$ws"
 rbs_source_devel

@@ -40,7 +40,8 @@ std::optional<ConservationMonitor::Drift> ConservationMonitor::Measure(const Wor
   Drift drift;
   drift.angular_momentum_norm =
       RelativeChange(now.angular_momentum_norm, references_[body].angular_momentum_norm);
-  drift.rotational_energy = RelativeChange(now.rotational_energy, references_[body].rotational_energy);
+  drift.rotational_energy =
+      RelativeChange(now.rotational_energy, references_[body].rotational_energy);
   return drift;
 }
 
@@ -62,7 +63,8 @@ void ConservationMonitor::Sweep(const World& world, std::size_t count) {
     const std::size_t body = sweep_cursor_;
     if (const std::optional<Drift> drift = Measure(world, body)) {
       // The first measured body sets both, so a NaN drift is still reported.
-      if (!sweep_.measured || std::abs(drift->angular_momentum_norm) > sweep_.angular_momentum_norm) {
+      if (!sweep_.measured ||
+          std::abs(drift->angular_momentum_norm) > sweep_.angular_momentum_norm) {
         sweep_.angular_momentum_norm = std::abs(drift->angular_momentum_norm);
         sweep_.angular_momentum_body = body;
       }
@@ -85,8 +87,8 @@ ConservationMonitor::Invariants ConservationMonitor::Of(const World& world, std:
   const BodyState& state = world.state(body);
   Invariants invariants;
   invariants.angular_momentum_norm = state.angular_momentum.norm();
-  invariants.rotational_energy =
-      KineticEnergy(model, state) - 0.5 * state.linear_momentum.squaredNorm() * model.inverse_mass();
+  invariants.rotational_energy = KineticEnergy(model, state) -
+                                 0.5 * state.linear_momentum.squaredNorm() * model.inverse_mass();
   return invariants;
 }
 

@@ -95,8 +95,8 @@ double HeldLoads::NewTorqueBound() const {
 const HeldLoads::PrincipalParts& HeldLoads::NewPrincipalParts(
     const Eigen::Quaterniond& body_from_principal) const {
   const Eigen::Matrix3d r = body_from_principal.toRotationMatrix();
-  principal_parts_ = {body_from_principal, r.transpose() * force_body_, r.transpose() * torque_body_,
-                      force_moment_ * r};
+  principal_parts_ = {body_from_principal, r.transpose() * force_body_,
+                      r.transpose() * torque_body_, force_moment_ * r};
   has_principal_parts_ = true;
   return principal_parts_;
 }

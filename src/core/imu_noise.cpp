@@ -23,8 +23,8 @@ ImuNoiseSample DrawImuNoise(const ImuNoise& noise, std::size_t body, std::uint64
   ImuNoiseSample sample;
   sample.angular_velocity_radps =
       Draw(noise, body, step, kAngularVelocityComponent, noise.angular_velocity_stddev_radps);
-  sample.linear_acceleration_mps2 = Draw(noise, body, step, kLinearAccelerationComponent,
-                                         noise.linear_acceleration_stddev_mps2);
+  sample.linear_acceleration_mps2 =
+      Draw(noise, body, step, kLinearAccelerationComponent, noise.linear_acceleration_stddev_mps2);
   sample.orientation_rad =
       Draw(noise, body, step, kOrientationComponent, noise.orientation_stddev_rad);
   return sample;

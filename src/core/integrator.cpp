@@ -46,11 +46,13 @@ const char* const kDefaultIntegrator = "casimir_splitting4";
 const std::vector<IntegratorInfo>& IntegratorTable() {
   static const std::vector<IntegratorInfo> table = {
       {kDefaultIntegrator, 4,
-       "Yoshida triple jump of casimir_splitting; exact for symmetric tops; free bodies in SIMD lanes",
+       "Yoshida triple jump of casimir_splitting; exact for symmetric tops; free bodies in SIMD "
+       "lanes",
        Make<CasimirSplitting4Integrator>},
       {"euler", 1, "the lecture's explicit step on the matrix A, then Gram-Schmidt",
        Make<EulerIntegrator>},
-      {"symplectic_euler", 1, "semi-implicit Euler with the exact exponential map, as game engines step",
+      {"symplectic_euler", 1,
+       "semi-implicit Euler with the exact exponential map, as game engines step",
        Make<SymplecticEulerIntegrator>},
       {"rk4", 4, "classical Runge-Kutta on (x, q, p, L), quaternion renormalised",
        Make<Rk4Integrator>},
@@ -65,7 +67,8 @@ const std::vector<IntegratorInfo>& IntegratorTable() {
        "Blanes-Moan 6-stage free rotation; with loads, McLachlan's 4-kick Runge-Kutta-Nystrom step",
        Make<CasimirRknIntegrator<4>>},
       {"casimir_rkn6", 6,
-       "Blanes-Moan 10-stage free rotation; with loads, Okunbor-Skeel's 7-kick Runge-Kutta-Nystrom step",
+       "Blanes-Moan 10-stage free rotation; with loads, Okunbor-Skeel's 7-kick Runge-Kutta-Nystrom "
+       "step",
        Make<CasimirRknIntegrator<6>>},
   };
   return table;

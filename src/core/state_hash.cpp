@@ -21,7 +21,8 @@ void Fnv1a64::AddDouble(double value) {
   std::uint64_t bits = 0;
   std::memcpy(&bits, &value, sizeof bits);
   unsigned char bytes[sizeof bits];
-  for (std::size_t i = 0; i < sizeof bits; ++i) bytes[i] = static_cast<unsigned char>(bits >> (8 * i));
+  for (std::size_t i = 0; i < sizeof bits; ++i)
+    bytes[i] = static_cast<unsigned char>(bits >> (8 * i));
   AddBytes(bytes, sizeof bytes);
 }
 

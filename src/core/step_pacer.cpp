@@ -7,7 +7,8 @@ namespace rigid_body_sim::core {
 
 StepPacer::StepPacer(double dt_s, double real_time_factor, double max_catch_up_s)
     : dt_s_(dt_s),
-      max_batch_(std::max<std::uint64_t>(1, static_cast<std::uint64_t>(std::ceil(max_catch_up_s / dt_s)))) {
+      max_batch_(std::max<std::uint64_t>(
+          1, static_cast<std::uint64_t>(std::ceil(max_catch_up_s / dt_s)))) {
   SetRealTimeFactor(real_time_factor, Clock::time_point{});
 }
 

@@ -28,7 +28,8 @@ TimeLattice::TimeLattice(double rate_hz) {
 std::int64_t TimeLattice::StampNs(std::int64_t k) const {
   // round(k·10⁹·den / num), half up; 128 bits hold k·10⁹·den for any rate and date.
   const __int128 numerator = static_cast<__int128>(k) * kNanosecondsPerSecond * rate_denominator_;
-  return static_cast<std::int64_t>((2 * numerator + rate_numerator_) / (2 * static_cast<__int128>(rate_numerator_)));
+  return static_cast<std::int64_t>((2 * numerator + rate_numerator_) /
+                                   (2 * static_cast<__int128>(rate_numerator_)));
 }
 
 std::int64_t TimeLattice::FirstIndexAtOrAfter(std::int64_t time_ns) const {

@@ -88,7 +88,8 @@ void World::CheckBody(std::size_t i) const {
                                 std::to_string(first->second) + "]");
   }
   const std::string properties_error = PropertiesError(properties_[i]);
-  if (!properties_error.empty()) throw std::invalid_argument(Entry(i, name) + ": " + properties_error);
+  if (!properties_error.empty())
+    throw std::invalid_argument(Entry(i, name) + ": " + properties_error);
   BodyFault fault = CheckState(models_[i], states_[i]);
   if (fault == BodyFault::kNone && SubstepsFor(i, states_[i]) == 0) fault = BodyFault::kSpinAliased;
   if (fault != BodyFault::kNone) {
@@ -173,8 +174,8 @@ std::uint32_t World::SubstepsFor(std::size_t body, const BodyState& state) const
   const double dt = options_.dt_s;
   // Below the bound on every rate, one step (squared, to spare the root).
   const double turn_bound = dt * kRateBoundFactor * model.inverse_principal_moments().maxCoeff();
-  const double reach = load != nullptr ? state.angular_momentum.norm() + dt * load->TorqueBound()
-                                       : 0.0;
+  const double reach =
+      load != nullptr ? state.angular_momentum.norm() + dt * load->TorqueBound() : 0.0;
   if (load != nullptr ? turn_bound * reach <= kMaxSubstepAngle
                       : turn_bound * turn_bound * state.angular_momentum.squaredNorm() <=
                             kMaxSubstepAngle * kMaxSubstepAngle) {
@@ -199,14 +200,15 @@ std::uint32_t World::SubstepsFor(std::size_t body, const BodyState& state) const
   // is sampled at the rotation's substeps alone, and freezes nothing. Its
   // impulse per step is still bounded by dt times the load's size.
   const double load_substeps = std::ceil(dt * load_rate / kMaxSubstepAngle);
-  const double substeps = load_substeps <= cap ? std::max(rotation_substeps, load_substeps) : rotation_substeps;
+  const double substeps =
+      load_substeps <= cap ? std::max(rotation_substeps, load_substeps) : rotation_substeps;
   return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(substeps));
 }
 
 void World::Step() {
-  const bool loads_changed = wrenches_.Reduce(time(), options_.wrench_timeout_s,
-                                              kTimeToleranceInSteps * options_.dt_s, models_,
-                                              &loads_, &loaded_);
+  const bool loads_changed =
+      wrenches_.Reduce(time(), options_.wrench_timeout_s, kTimeToleranceInSteps * options_.dt_s,
+                       models_, &loads_, &loaded_);
   if (loads_changed) {
     for (std::size_t i = 0; i < models_.size(); ++i) {
       const BodyProperties& properties = properties_[i];
@@ -269,7 +271,8 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       continue;
     }
     if (loaded_[i] && !model.is_full_rank() &&
-        loads_[i].DroppedTorque(state.orientation.toRotationMatrix()) > kDroppedCoupleTolerance_Nm) {
+        loads_[i].DroppedTorque(state.orientation.toRotationMatrix()) >
+            kDroppedCoupleTolerance_Nm) {
       ++share->dropped_couples;
     }
     share->substeps_max = std::max(share->substeps_max, substeps);
@@ -329,7 +332,8 @@ void World::FinishStep(std::size_t body, const BodyState& before, Share* share) 
   if (!model.is_full_rank()) {
     // Keep L in the range of I, so that the published L equals I ω.
     const Eigen::Matrix3d a = state.orientation.toRotationMatrix();
-    state.angular_momentum = a * (model.range_projector() * (a.transpose() * state.angular_momentum));
+    state.angular_momentum =
+        a * (model.range_projector() * (a.transpose() * state.angular_momentum));
   }
   const BodyFault fault = CheckState(model, state);
   if (fault != BodyFault::kNone) {

@@ -1,7 +1,7 @@
 #include "rigid_body_sim/core/wrench_table.h"
 
-#include <cassert>
 #include <algorithm>
+#include <cassert>
 #include <cmath>
 #include <limits>
 
@@ -56,7 +56,8 @@ JobRefusal WrenchTable::AddJob(const WrenchJob& job, double t_s) {
   if (jobs_per_body_[job.body] >= kMaxJobsPerBody) return JobRefusal::kBodyFull;
   if (job_count_ >= kMaxJobs) return JobRefusal::kTableFull;
   reduced_ = false;
-  Entry entry = MakeEntry(Entry::Kind::kJob, job.body, job.axes, job.force, job.couple, job.start_s);
+  Entry entry =
+      MakeEntry(Entry::Kind::kJob, job.body, job.axes, job.force, job.couple, job.start_s);
   entry.point_m = job.point_m;
   entry.end_s = job.end_s;
   entries_.push_back(entry);

@@ -45,8 +45,8 @@ sensor_msgs::Imu ToImuMsg(const core::BodyModel& model, const core::BodyState& s
   msg.header.stamp = stamp;
   msg.header.frame_id = body_frame_id;
   msg.orientation = tf2::toMsg(core::TurnedInBodyAxes(state.orientation, error.orientation_rad));
-  msg.angular_velocity = ToVector3Msg(to_body * core::AngularVelocity(model, state) +
-                                      error.angular_velocity_radps);
+  msg.angular_velocity =
+      ToVector3Msg(to_body * core::AngularVelocity(model, state) + error.angular_velocity_radps);
   msg.linear_acceleration = ToVector3Msg(specific_force + error.linear_acceleration_mps2);
   SetDiagonalCovariance(noise.orientation_stddev_rad, &msg.orientation_covariance);
   SetDiagonalCovariance(noise.angular_velocity_stddev_radps, &msg.angular_velocity_covariance);

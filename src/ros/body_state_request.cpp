@@ -23,7 +23,8 @@ std::optional<core::BodyState> StateFromRequest(const core::BodyModel& model,
     *reason = "pose.orientation must be a finite, non-zero quaternion (identity is w: 1)";
     return std::nullopt;
   }
-  const core::BodyState state = core::StateFromTwist(model, position, *orientation, linear, angular);
+  const core::BodyState state =
+      core::StateFromTwist(model, position, *orientation, linear, angular);
   const core::BodyFault fault = core::CheckState(model, state);
   if (fault != core::BodyFault::kNone) {
     *reason = std::string("the state would be ") + core::ToString(fault) +

@@ -108,13 +108,16 @@ void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
   AdvertiseCounted<geometry_msgs::PoseStamped>(nh, body + "/pose", topics, &topics->pose);
   AdvertiseCounted<geometry_msgs::TwistStamped>(nh, body + "/twist", topics, &topics->twist);
   AdvertiseCounted<nav_msgs::Odometry>(nh, body + "/odom", topics, &topics->odom);
-  AdvertiseCounted<sensor_msgs::Imu>(nh, body + "/imu", topics, &topics->imu, &step_record_subscribers_);
-  AdvertiseCounted<geometry_msgs::WrenchStamped>(nh, body + "/applied_wrench", topics,
-                                                 &topics->applied_wrench, &step_record_subscribers_);
+  AdvertiseCounted<sensor_msgs::Imu>(nh, body + "/imu", topics, &topics->imu,
+                                     &step_record_subscribers_);
+  AdvertiseCounted<geometry_msgs::WrenchStamped>(
+      nh, body + "/applied_wrench", topics, &topics->applied_wrench, &step_record_subscribers_);
   const WrenchCallback& on_wrench = on_wrench_;
   topics->wrench = nh.subscribe<geometry_msgs::WrenchStamped>(
       body + "/wrench", kWrenchQueueSize,
-      [&on_wrench, body](const geometry_msgs::WrenchStamped::ConstPtr& msg) { on_wrench(body, *msg); },
+      [&on_wrench, body](const geometry_msgs::WrenchStamped::ConstPtr& msg) {
+        on_wrench(body, *msg);
+      },
       ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
   topics->advertised.store(true, std::memory_order_release);
   advertised_.fetch_add(1, std::memory_order_relaxed);

@@ -13,15 +13,19 @@ using XmlRpc::XmlRpcValue;
 // A value as the user wrote it, for "got ..." in error messages.
 std::string Describe(XmlRpcValue& value) {
   switch (value.getType()) {
-    case XmlRpcValue::TypeInt: return std::to_string(static_cast<int>(value));
+    case XmlRpcValue::TypeInt:
+      return std::to_string(static_cast<int>(value));
     case XmlRpcValue::TypeDouble: {
       char text[32];
       std::snprintf(text, sizeof(text), "%g", static_cast<double>(value));
       return text;
     }
-    case XmlRpcValue::TypeString: return "'" + static_cast<std::string&>(value) + "'";
-    case XmlRpcValue::TypeBoolean: return static_cast<bool>(value) ? "true" : "false";
-    default: return "a " + std::string(value.getType() == XmlRpcValue::TypeArray ? "list" : "map");
+    case XmlRpcValue::TypeString:
+      return "'" + static_cast<std::string&>(value) + "'";
+    case XmlRpcValue::TypeBoolean:
+      return static_cast<bool>(value) ? "true" : "false";
+    default:
+      return "a " + std::string(value.getType() == XmlRpcValue::TypeArray ? "list" : "map");
   }
 }
 

@@ -6,7 +6,8 @@ namespace rigid_body_sim {
 
 LockstepGate::LockstepGate(std::vector<std::string> publishers, double timeout_s)
     : publishers_(std::move(publishers)),
-      timeout_(std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s))),
+      timeout_(
+          std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout_s))),
       answered_(publishers_.size(), false) {}
 
 void LockstepGate::Open(const ros::Time& stamp, Clock::time_point now) {

@@ -18,7 +18,8 @@ std::vector<std::string> NodesOf(XmlRpc::XmlRpcValue& entries, const std::string
     XmlRpc::XmlRpcValue& entry = entries[i];
     if (entry.getType() != XmlRpc::XmlRpcValue::TypeArray || entry.size() != 2 ||
         entry[0].getType() != XmlRpc::XmlRpcValue::TypeString ||
-        static_cast<std::string>(entry[0]) != topic || entry[1].getType() != XmlRpc::XmlRpcValue::TypeArray) {
+        static_cast<std::string>(entry[0]) != topic ||
+        entry[1].getType() != XmlRpc::XmlRpcValue::TypeArray) {
       continue;
     }
     for (int j = 0; j < entry[1].size(); ++j) {
@@ -49,7 +50,8 @@ std::vector<std::string> PublishersNotConnected(const std::vector<std::string>& 
   const std::vector<std::string> listening = NodesOf(system_state[1], state_topic);
   std::vector<std::string> missing;
   for (const std::string& publisher : publishers) {
-    if (!Contains(answering, publisher) || !Contains(listening, publisher)) missing.push_back(publisher);
+    if (!Contains(answering, publisher) || !Contains(listening, publisher))
+      missing.push_back(publisher);
   }
   return missing;
 }

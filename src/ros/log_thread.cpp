@@ -55,9 +55,15 @@ class LogThread {
       lines_.pop_front();
       lock.unlock();
       switch (level) {
-        case LogLevel::kInfo: ROS_INFO("%s", line.c_str()); break;
-        case LogLevel::kWarn: ROS_WARN("%s", line.c_str()); break;
-        case LogLevel::kError: ROS_ERROR("%s", line.c_str()); break;
+        case LogLevel::kInfo:
+          ROS_INFO("%s", line.c_str());
+          break;
+        case LogLevel::kWarn:
+          ROS_WARN("%s", line.c_str());
+          break;
+        case LogLevel::kError:
+          ROS_ERROR("%s", line.c_str());
+          break;
       }
       lock.lock();
     }

@@ -91,9 +91,11 @@ void NodeDiagnostics::OnBodyRemoved(std::size_t body) {
 
 void NodeDiagnostics::Report(Clock::time_point now, const ros::Time& stamp, bool paused) {
   const double wall_s = std::chrono::duration<double>(now - window_.start).count();
-  achieved_real_time_factor_ = wall_s > 0.0 ? (world_.time() - window_.start_sim_time_s) / wall_s : 0.0;
+  achieved_real_time_factor_ =
+      wall_s > 0.0 ? (world_.time() - window_.start_sim_time_s) / wall_s : 0.0;
   step_time_mean_us_ =
-      window_.steps > 0 ? Microseconds(window_.step_time_total) / static_cast<double>(window_.steps) : 0.0;
+      window_.steps > 0 ? Microseconds(window_.step_time_total) / static_cast<double>(window_.steps)
+                        : 0.0;
   step_time_max_us_ = Microseconds(window_.step_time_max);
   substeps_max_ = window_.substeps_max;
   window_ = Window{now, world_.time()};
@@ -107,13 +109,13 @@ void NodeDiagnostics::Report(Clock::time_point now, const ros::Time& stamp, bool
   if (settings_.status_period_s > 0.0 && now >= next_status_) {
     const std::string substeps =
         substeps_max_ > 1 ? ", up to " + std::to_string(substeps_max_) + " substeps" : "";
-    LogOffThread(LogLevel::kInfo,
-                 Format("sim time %.3f s (%.3f s since start), real-time factor %.3f%s, %zu bodies, "
-                        "step %.1f us (max %.1f us)%s, %llu overruns",
-                        stamp.toSec(), world_.time(), achieved_real_time_factor_,
-                        paused ? " (paused)" : "", world_.size(), step_time_mean_us_,
-                        step_time_max_us_, substeps.c_str(),
-                        static_cast<unsigned long long>(pacer_.overruns() - overruns_at_last_status_)));
+    LogOffThread(
+        LogLevel::kInfo,
+        Format("sim time %.3f s (%.3f s since start), real-time factor %.3f%s, %zu bodies, "
+               "step %.1f us (max %.1f us)%s, %llu overruns",
+               stamp.toSec(), world_.time(), achieved_real_time_factor_, paused ? " (paused)" : "",
+               world_.size(), step_time_mean_us_, step_time_max_us_, substeps.c_str(),
+               static_cast<unsigned long long>(pacer_.overruns() - overruns_at_last_status_)));
     overruns_at_last_status_ = pacer_.overruns();
     next_status_ = now + std::chrono::duration_cast<Clock::duration>(
                              std::chrono::duration<double>(settings_.status_period_s));
@@ -123,8 +125,8 @@ void NodeDiagnostics::Report(Clock::time_point now, const ros::Time& stamp, bool
 
 void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) {
   // Single late wake-ups are normal on a busy machine; falling behind is not.
-  const bool slow = !paused_ && pacer_.paced() &&
-                    achieved_real_time_factor_ < 0.9 * settings_.real_time_factor;
+  const bool slow =
+      !paused_ && pacer_.paced() && achieved_real_time_factor_ < 0.9 * settings_.real_time_factor;
   if (world_.frozen_count() > 0) {
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR,
                    std::to_string(world_.frozen_count()) +
@@ -186,7 +188,8 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
   }
   if (world_.size() <= kMaxPerBodyDriftKeys) {
     for (std::size_t body = 0; body < world_.size(); ++body) {
-      const std::optional<core::ConservationMonitor::Drift> drift = conservation_.Measure(world_, body);
+      const std::optional<core::ConservationMonitor::Drift> drift =
+          conservation_.Measure(world_, body);
       if (!drift) continue;
       const std::string& name = world_.model(body).name();
       status.add(name + "/angular_momentum_drift", drift->angular_momentum_norm);
@@ -196,9 +199,11 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
   const core::ConservationMonitor::Largest& largest = conservation_.last_sweep();
   if (largest.measured) {
     status.add("angular_momentum_drift_max", largest.angular_momentum_norm);
-    status.add("angular_momentum_drift_max_body", world_.model(largest.angular_momentum_body).name());
+    status.add("angular_momentum_drift_max_body",
+               world_.model(largest.angular_momentum_body).name());
     status.add("rotational_energy_drift_max", largest.rotational_energy);
-    status.add("rotational_energy_drift_max_body", world_.model(largest.rotational_energy_body).name());
+    status.add("rotational_energy_drift_max_body",
+               world_.model(largest.rotational_energy_body).name());
   }
 }
 

@@ -25,13 +25,12 @@ class FunctionCallback : public ros::CallbackInterface {
 }  // namespace
 
 RequestLane::RequestLane(const ros::NodeHandle& private_nh)
-    : stepping_thread_(std::this_thread::get_id()),
-      lane_nh_(private_nh),
-      spinner_(1, &queue_) {
+    : stepping_thread_(std::this_thread::get_id()), lane_nh_(private_nh), spinner_(1, &queue_) {
   lane_nh_.setCallbackQueue(&queue_);
-  trim_timer_ = lane_nh_.createWallTimer(ros::WallDuration(kTrimPeriod_s), [this](const ros::WallTimerEvent&) {
-    if (trim_wanted_.exchange(false)) malloc_trim(0);
-  });
+  trim_timer_ = lane_nh_.createWallTimer(ros::WallDuration(kTrimPeriod_s),
+                                         [this](const ros::WallTimerEvent&) {
+                                           if (trim_wanted_.exchange(false)) malloc_trim(0);
+                                         });
   spinner_.start();
 }
 

@@ -4,7 +4,6 @@
 #include <cstdio>
 #include <vector>
 
-
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/ros/log_thread.h"
 
@@ -50,7 +49,8 @@ bool SameRuntimeSettings(const NodeSettings& a, const NodeSettings& b) {
 
 std::optional<std::string> WhyNotApplicable(const NodeSettings& settings) {
   if (!(settings.real_time_factor >= 0.0) || !std::isfinite(settings.real_time_factor)) {
-    return "real_time_factor must be finite and >= 0, got " + FormatNumber(settings.real_time_factor);
+    return "real_time_factor must be finite and >= 0, got " +
+           FormatNumber(settings.real_time_factor);
   }
   if (!(settings.publish_rate_hz > 0.0)) {
     return "publish_rate must be > 0, got " + FormatNumber(settings.publish_rate_hz);

@@ -38,17 +38,23 @@ std::string FormatNumber(double value) {
 // A parameter value as the user wrote it, for "got ..." in error messages.
 std::string Describe(const XmlRpcValue& value) {
   switch (value.getType()) {
-    case XmlRpcValue::TypeInt: return std::to_string(static_cast<int>(value));
-    case XmlRpcValue::TypeDouble: return FormatNumber(static_cast<double>(value));
-    case XmlRpcValue::TypeString: return "'" + static_cast<const std::string&>(value) + "'";
-    case XmlRpcValue::TypeBoolean: return static_cast<bool>(value) ? "true" : "false";
+    case XmlRpcValue::TypeInt:
+      return std::to_string(static_cast<int>(value));
+    case XmlRpcValue::TypeDouble:
+      return FormatNumber(static_cast<double>(value));
+    case XmlRpcValue::TypeString:
+      return "'" + static_cast<const std::string&>(value) + "'";
+    case XmlRpcValue::TypeBoolean:
+      return static_cast<bool>(value) ? "true" : "false";
     case XmlRpcValue::TypeArray: {
       std::string text = "[";
       for (int i = 0; i < value.size(); ++i) text += (i ? ", " : "") + Describe(value[i]);
       return text + "]";
     }
-    case XmlRpcValue::TypeStruct: return "a map";
-    default: return "nothing";
+    case XmlRpcValue::TypeStruct:
+      return "a map";
+    default:
+      return "nothing";
   }
 }
 
@@ -169,15 +175,15 @@ std::vector<core::Particle> ReadShape(const XmlRpcValue& body, const std::string
 
 void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) {
   static const std::set<std::string> kCommonKeys = {
-      "name",          "position",       "orientation",    "linear_velocity",
-      "angular_velocity", "gravity_scale", "linear_damping", "angular_damping"};
+      "name",          "position",       "orientation",    "linear_velocity", "angular_velocity",
+      "gravity_scale", "linear_damping", "angular_damping"};
   for (const auto& member : body) {
     if (kCommonKeys.count(member.first) || kind_keys.count(member.first)) continue;
     std::string known;
     for (const auto& key : kCommonKeys) known += key + ", ";
     for (const auto& key : kind_keys) known += key + ", ";
-    throw SceneError("unknown key '" + member.first + "' (known here: " +
-                     known.substr(0, known.size() - 2) + ")");
+    throw SceneError("unknown key '" + member.first +
+                     "' (known here: " + known.substr(0, known.size() - 2) + ")");
   }
 }
 
@@ -291,9 +297,10 @@ class ParamReader {
     }
     std::vector<std::string> strings;
     for (int i = 0; i < value.size(); ++i) {
-      if (value[i].getType() != XmlRpcValue::TypeString || static_cast<std::string>(value[i]).empty()) {
-        throw SceneError("~" + key + "[" + std::to_string(i) + "] must be a non-empty string, got " +
-                         Describe(value[i]));
+      if (value[i].getType() != XmlRpcValue::TypeString ||
+          static_cast<std::string>(value[i]).empty()) {
+        throw SceneError("~" + key + "[" + std::to_string(i) +
+                         "] must be a non-empty string, got " + Describe(value[i]));
       }
       strings.push_back(value[i]);
     }
@@ -315,13 +322,15 @@ LockstepSettings ReadLockstep(const ParamReader& params) {
     lockstep.publishers.push_back(ros::names::resolve(name));
   }
   if (lockstep.enabled && lockstep.publishers.empty()) {
-    throw SceneError("~lockstep_publishers must list the controllers' node names when ~lockstep is true");
+    throw SceneError(
+        "~lockstep_publishers must list the controllers' node names when ~lockstep is true");
   }
   lockstep.timeout_s = params.Number("lockstep_timeout", lockstep.timeout_s);
   if (lockstep.timeout_s <= 0.0) {
     throw SceneError("~lockstep_timeout must be > 0, got " + FormatNumber(lockstep.timeout_s));
   }
-  lockstep.startup_timeout_s = params.Number("lockstep_startup_timeout", lockstep.startup_timeout_s);
+  lockstep.startup_timeout_s =
+      params.Number("lockstep_startup_timeout", lockstep.startup_timeout_s);
   if (lockstep.startup_timeout_s < 0.0) {
     throw SceneError("~lockstep_startup_timeout must be >= 0, got " +
                      FormatNumber(lockstep.startup_timeout_s));
@@ -368,7 +377,8 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   settings.gravity_mps2 = params.Vector3("gravity", settings.gravity_mps2);
   settings.wrench_timeout_s = params.Number("wrench_timeout", settings.wrench_timeout_s);
   if (settings.wrench_timeout_s < 0.0) {
-    throw SceneError("~wrench_timeout must be >= 0, got " + FormatNumber(settings.wrench_timeout_s));
+    throw SceneError("~wrench_timeout must be >= 0, got " +
+                     FormatNumber(settings.wrench_timeout_s));
   }
   settings.real_time_factor = params.Number("real_time_factor", settings.real_time_factor);
   if (settings.real_time_factor < 0.0) {
@@ -385,7 +395,8 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
     throw SceneError("~status_period must be >= 0, got " + FormatNumber(settings.status_period_s));
   }
   const double max_substeps = params.Number("max_substeps", settings.max_substeps);
-  if (max_substeps < 1.0 || max_substeps > kMaxSubstepsLimit || max_substeps != std::floor(max_substeps)) {
+  if (max_substeps < 1.0 || max_substeps > kMaxSubstepsLimit ||
+      max_substeps != std::floor(max_substeps)) {
     throw SceneError("~max_substeps must be a whole number from 1 to " +
                      FormatNumber(kMaxSubstepsLimit) + ", got " + FormatNumber(max_substeps));
   }
@@ -411,8 +422,7 @@ void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* sce
   }
   if (!body.hasMember("name")) throw SceneError(entry + ": name is missing");
   const XmlRpcValue& name = body["name"];
-  if (name.getType() != XmlRpcValue::TypeString ||
-      static_cast<const std::string&>(name).empty()) {
+  if (name.getType() != XmlRpcValue::TypeString || static_cast<const std::string&>(name).empty()) {
     throw SceneError(entry + ": name must be a non-empty string, got " + Describe(name));
   }
   entry += " (name '" + static_cast<const std::string&>(name) + "')";
@@ -421,8 +431,9 @@ void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* sce
                      " characters");
   }
   if (!IsValidBodyName(name)) {
-    throw SceneError(entry + ": name must be a letter then letters, digits or '_' "
-                             "(it names a TF frame and topics)");
+    throw SceneError(entry +
+                     ": name must be a letter then letters, digits or '_' "
+                     "(it names a TF frame and topics)");
   }
   try {
     ParseBody(body, scene_bodies);

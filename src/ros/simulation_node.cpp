@@ -96,8 +96,8 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       private_nh_(private_nh),
       body_count_(world_.size()),
       requests_(private_nh_),
-      spawn_service_(requests_.node_handle().advertiseService("spawn_body", &SimulationNode::OnSpawnBody,
-                                                              this)),
+      spawn_service_(requests_.node_handle().advertiseService("spawn_body",
+                                                              &SimulationNode::OnSpawnBody, this)),
       runtime_config_(requests_.node_handle(), settings_, [this](const NodeSettings& next) {
         requests_.OnSteppingThread([this, next] {
           ApplyRuntimeSettings(next);
@@ -106,29 +106,33 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
         requests_.TrimMemorySoon();
       }) {
   const ros::TransportHints low_latency = ros::TransportHints().tcpNoDelay();
-  subscribers_.push_back(private_nh_.subscribe("particle_wrench", kWrenchQueueSize,
-                                               &SimulationNode::OnParticleWrench, this, low_latency));
+  subscribers_.push_back(private_nh_.subscribe(
+      "particle_wrench", kWrenchQueueSize, &SimulationNode::OnParticleWrench, this, low_latency));
   subscribers_.push_back(private_nh_.subscribe("particle_wrenches", kWrenchArrayQueueSize,
-                                               &SimulationNode::OnParticleWrenches, this, low_latency));
+                                               &SimulationNode::OnParticleWrenches, this,
+                                               low_latency));
   if (lockstep_) {
     subscribers_.push_back(private_nh_.subscribe("lockstep_wrenches", kWrenchArrayQueueSize,
-                                                 &SimulationNode::OnLockstepAnswer, this, low_latency));
+                                                 &SimulationNode::OnLockstepAnswer, this,
+                                                 low_latency));
   }
 
   services_.push_back(private_nh_.advertiseService("reset", &SimulationNode::OnReset, this));
-  services_.push_back(private_nh_.advertiseService("set_paused", &SimulationNode::OnSetPaused, this));
-  services_.push_back(private_nh_.advertiseService("step", &SimulationNode::OnStep, this));
   services_.push_back(
-      private_nh_.advertiseService("step_with_wrenches", &SimulationNode::OnStepWithWrenches, this));
+      private_nh_.advertiseService("set_paused", &SimulationNode::OnSetPaused, this));
+  services_.push_back(private_nh_.advertiseService("step", &SimulationNode::OnStep, this));
+  services_.push_back(private_nh_.advertiseService("step_with_wrenches",
+                                                   &SimulationNode::OnStepWithWrenches, this));
   services_.push_back(
       private_nh_.advertiseService("set_body_state", &SimulationNode::OnSetBodyState, this));
   services_.push_back(
       private_nh_.advertiseService("clear_wrenches", &SimulationNode::OnClearWrenches, this));
   services_.push_back(
       private_nh_.advertiseService("apply_body_wrench", &SimulationNode::OnApplyBodyWrench, this));
+  services_.push_back(private_nh_.advertiseService("clear_body_wrenches",
+                                                   &SimulationNode::OnClearBodyWrenches, this));
   services_.push_back(
-      private_nh_.advertiseService("clear_body_wrenches", &SimulationNode::OnClearBodyWrenches, this));
-  services_.push_back(private_nh_.advertiseService("delete_body", &SimulationNode::OnDeleteBody, this));
+      private_nh_.advertiseService("delete_body", &SimulationNode::OnDeleteBody, this));
 
   WarnIfPublishRateIsRounded(settings_, publish_every_steps_);
 }
@@ -139,12 +143,13 @@ void SimulationNode::Run() {
   next_report_ = Clock::now() + NodeDiagnostics::kReportPeriod;
   pacer_.Restart(Clock::now());
   diagnostics_.Start(Clock::now());
-  ROS_INFO("%s: %zu bodies, integrator %s, dt %g s, publishing every %llu steps, "
-           "real-time factor %g, start time %.9f s%s",
-           ros::this_node::getName().c_str(), world_.size(), world_.integrator().name(),
-           world_.options().dt_s, static_cast<unsigned long long>(publish_every_steps_),
-           settings_.real_time_factor, start_stamp_.toSec(),
-           lockstep_ ? (", lockstep with " + Join(lockstep_->publishers())).c_str() : "");
+  ROS_INFO(
+      "%s: %zu bodies, integrator %s, dt %g s, publishing every %llu steps, "
+      "real-time factor %g, start time %.9f s%s",
+      ros::this_node::getName().c_str(), world_.size(), world_.integrator().name(),
+      world_.options().dt_s, static_cast<unsigned long long>(publish_every_steps_),
+      settings_.real_time_factor, start_stamp_.toSec(),
+      lockstep_ ? (", lockstep with " + Join(lockstep_->publishers())).c_str() : "");
   if (lockstep_) PublishCycle();  // t_0, for the controllers' first answer
 
   ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
@@ -154,8 +159,8 @@ void SimulationNode::Run() {
     const bool gated = lockstep_ && lockstep_->open();
     if (!paused_ && !gated) {
       // Under lockstep a batch ends at the next cycle, where the gate opens.
-      const std::uint64_t at_most = lockstep_ ? StepsToNextCycle()
-                                                  : std::numeric_limits<std::uint64_t>::max();
+      const std::uint64_t at_most =
+          lockstep_ ? StepsToNextCycle() : std::numeric_limits<std::uint64_t>::max();
       for (std::uint64_t due = pacer_.TakeDueSteps(now, at_most); due > 0; --due) {
         StepOnce(IsPublishCycle(world_.step_count() + 1));
         if (IsPublishCycle(world_.step_count())) PublishCycle();
@@ -168,11 +173,11 @@ void SimulationNode::Run() {
       if (next_report_ <= now) next_report_ = now + NodeDiagnostics::kReportPeriod;
     }
     const bool waits_for_answers = lockstep_ && lockstep_->open();
-    const Clock::time_point wake =
-        paused_             ? now + kPausedWait
-        : waits_for_answers ? std::min(lockstep_->deadline(), next_report_)
-        : pacer_.paced()    ? std::min(pacer_.next_due(), next_report_)
-                            : now;
+    const Clock::time_point wake = paused_ ? now + kPausedWait
+                                   : waits_for_answers
+                                       ? std::min(lockstep_->deadline(), next_report_)
+                                   : pacer_.paced() ? std::min(pacer_.next_due(), next_report_)
+                                                    : now;
     const double wait_s = std::max(0.0, std::chrono::duration<double>(wake - now).count());
     callbacks.callAvailable(ros::WallDuration(wait_s));
   }
@@ -217,10 +222,12 @@ void SimulationNode::WaitForLockstepPublishers() {
   }
   if (!ros::ok()) return;
   lockstep_->CountStartupTimeout();
-  ROS_WARN("lockstep: after %g s (~lockstep_startup_timeout) %s not both publishing on %s and "
-           "subscribed to %s; starting anyway, each cycle waits at most ~lockstep_timeout %g s",
-           settings_.lockstep.startup_timeout_s, missing.empty() ? "some controllers are" : (Join(missing) + " is").c_str(),
-           answer_topic.c_str(), state_topic.c_str(), settings_.lockstep.timeout_s);
+  ROS_WARN(
+      "lockstep: after %g s (~lockstep_startup_timeout) %s not both publishing on %s and "
+      "subscribed to %s; starting anyway, each cycle waits at most ~lockstep_timeout %g s",
+      settings_.lockstep.startup_timeout_s,
+      missing.empty() ? "some controllers are" : (Join(missing) + " is").c_str(),
+      answer_topic.c_str(), state_topic.c_str(), settings_.lockstep.timeout_s);
 }
 
 void SimulationNode::PublishCycle() {
@@ -248,12 +255,13 @@ void SimulationNode::PassLockstepGate(Clock::time_point now) {
     if (now < lockstep_->deadline()) return;
     const std::vector<std::string> missing = lockstep_->Close(true);
     if (lockstep_warnings_.Ready()) {
-      LogOffThread(LogLevel::kWarn,
-                   Format("lockstep: no answer stamped %.9f from %s within %g s (~lockstep_timeout); "
-                          "stepping on (%llu timeouts so far)",
-                          lockstep_->open_stamp().toSec(), Join(missing).c_str(),
-                          settings_.lockstep.timeout_s,
-                          static_cast<unsigned long long>(lockstep_->timeouts())));
+      LogOffThread(
+          LogLevel::kWarn,
+          Format("lockstep: no answer stamped %.9f from %s within %g s (~lockstep_timeout); "
+                 "stepping on (%llu timeouts so far)",
+                 lockstep_->open_stamp().toSec(), Join(missing).c_str(),
+                 settings_.lockstep.timeout_s,
+                 static_cast<unsigned long long>(lockstep_->timeouts())));
     }
   } else {
     lockstep_->Close(false);
@@ -271,7 +279,8 @@ void SimulationNode::StepOnce(bool publishes_after) {
 }
 
 ros::Time SimulationNode::Stamp() const {
-  return FromNanoseconds(lattice_.StampNs(first_index_ + static_cast<std::int64_t>(world_.step_count())));
+  return FromNanoseconds(
+      lattice_.StampNs(first_index_ + static_cast<std::int64_t>(world_.step_count())));
 }
 
 bool SimulationNode::IsPublishCycle(std::uint64_t steps) const {
@@ -299,7 +308,8 @@ void SimulationNode::OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg
                     [this](const core::ParticleWrench& wrench) { Hold(wrench); });
 }
 
-void SimulationNode::OnLockstepAnswer(const ros::MessageEvent<const StampedParticleWrenchArray>& event) {
+void SimulationNode::OnLockstepAnswer(
+    const ros::MessageEvent<const StampedParticleWrenchArray>& event) {
   const StampedParticleWrenchArray& msg = *event.getConstMessage();
   const std::string& sender = event.getPublisherName();
   switch (lockstep_->Sort(sender, msg.header.stamp)) {
@@ -325,7 +335,8 @@ void SimulationNode::OnLockstepAnswer(const ros::MessageEvent<const StampedParti
                     [this](const core::ParticleWrench& wrench) { Hold(wrench); });
 }
 
-void SimulationNode::OnBodyWrench(const std::string& body, const geometry_msgs::WrenchStamped& msg) {
+void SimulationNode::OnBodyWrench(const std::string& body,
+                                  const geometry_msgs::WrenchStamped& msg) {
   if (const auto wrench = intake_.TakeBodyWrench(msg, body, start_stamp_, world_.time())) {
     world_.HoldBodyWrench(*wrench);
     diagnostics_.OnWrenchHeld(wrench->body);
@@ -335,8 +346,9 @@ void SimulationNode::OnBodyWrench(const std::string& body, const geometry_msgs::
 bool SimulationNode::OnReset(std_srvs::Empty::Request&, std_srvs::Empty::Response&) {
   world_.Reset();
   diagnostics_.OnReset();
-  LogOffThread(LogLevel::kInfo,
-               Format("reset: every body back to its initial state at sim time %.3f s", Stamp().toSec()));
+  LogOffThread(
+      LogLevel::kInfo,
+      Format("reset: every body back to its initial state at sim time %.3f s", Stamp().toSec()));
   return true;
 }
 
@@ -392,8 +404,9 @@ bool SimulationNode::OnStepWithWrenches(StepWithWrenches::Request& request,
     return true;
   }
   std::vector<std::string> rejections;
-  intake_.TakeArray(request.wrenches, start_stamp_, world_.time(),
-                    [this](const core::ParticleWrench& wrench) { Hold(wrench); }, &rejections);
+  intake_.TakeArray(
+      request.wrenches, start_stamp_, world_.time(),
+      [this](const core::ParticleWrench& wrench) { Hold(wrench); }, &rejections);
   if (request.wrenches.size() >= kLargeWrenchRequest) requests_.TrimMemorySoon();
   const std::uint64_t hash = StepWhilePaused(request.steps);
   response.success = true;
@@ -514,7 +527,8 @@ void SimulationNode::AddBody(SceneBodies entry, SpawnBody::Response* response) {
   publisher_.AddBody(model);
   diagnostics_.OnBodyAdded();
   response->success = true;
-  response->message = "spawned '" + model.name() + "' as bodies[" + std::to_string(world_.size() - 1) + "]";
+  response->message =
+      "spawned '" + model.name() + "' as bodies[" + std::to_string(world_.size() - 1) + "]";
 }
 
 bool SimulationNode::OnDeleteBody(DeleteBody::Request& request, DeleteBody::Response& response) {
@@ -550,15 +564,15 @@ void SimulationNode::ApplyRuntimeSettings(const NodeSettings& next) {
   if (next.integrator != settings_.integrator) world_.SetIntegrator(next.integrator);
   publisher_.SetPublishTf(next.publish_tf);
   settings_ = next;  // NodeDiagnostics reads the real-time factor target here
-  LogOffThread(LogLevel::kInfo,
-               Format("runtime configuration applied at sim time %.3f s: integrator %s, publishing "
-                      "every %llu steps, real-time factor %g, gravity [%g, %g, %g] m/s^2, wrench "
-                      "timeout %g s, publish_tf %s",
-                      Stamp().toSec(), world_.integrator().name(),
-                      static_cast<unsigned long long>(publish_every_steps_),
-                      settings_.real_time_factor, settings_.gravity_mps2.x(),
-                      settings_.gravity_mps2.y(), settings_.gravity_mps2.z(),
-                      settings_.wrench_timeout_s, settings_.publish_tf ? "true" : "false"));
+  LogOffThread(
+      LogLevel::kInfo,
+      Format("runtime configuration applied at sim time %.3f s: integrator %s, publishing "
+             "every %llu steps, real-time factor %g, gravity [%g, %g, %g] m/s^2, wrench "
+             "timeout %g s, publish_tf %s",
+             Stamp().toSec(), world_.integrator().name(),
+             static_cast<unsigned long long>(publish_every_steps_), settings_.real_time_factor,
+             settings_.gravity_mps2.x(), settings_.gravity_mps2.y(), settings_.gravity_mps2.z(),
+             settings_.wrench_timeout_s, settings_.publish_tf ? "true" : "false"));
 }
 
 }  // namespace rigid_body_sim

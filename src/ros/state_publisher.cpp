@@ -22,7 +22,8 @@ std_msgs::ColorRGBA BodyColor(int marker_id) {
   static const float kPalette[][3] = {{0.90f, 0.30f, 0.25f}, {0.25f, 0.60f, 0.90f},
                                       {0.35f, 0.80f, 0.35f}, {0.95f, 0.75f, 0.20f},
                                       {0.70f, 0.40f, 0.85f}, {0.30f, 0.85f, 0.80f}};
-  const float* rgb = kPalette[static_cast<std::size_t>(marker_id) % (sizeof(kPalette) / sizeof(kPalette[0]))];
+  const float* rgb =
+      kPalette[static_cast<std::size_t>(marker_id) % (sizeof(kPalette) / sizeof(kPalette[0]))];
   std_msgs::ColorRGBA color;
   color.r = rgb[0];
   color.g = rgb[1];
@@ -132,8 +133,8 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
       inputs.gravity_scale = world.properties(body).gravity_scale;
       inputs.body = body;
       inputs.step = world.step_count();
-      topics->imu.publisher.publish(
-          ToImuMsg(world.model(body), world.state(body), inputs, imu_noise_, child_frames_[body], stamp));
+      topics->imu.publisher.publish(ToImuMsg(world.model(body), world.state(body), inputs,
+                                             imu_noise_, child_frames_[body], stamp));
     }
     if (topics->applied_wrench.wanted()) {
       topics->applied_wrench.publisher.publish(

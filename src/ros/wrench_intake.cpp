@@ -20,14 +20,22 @@ WrenchMsgRejection NotHereRejection(const std::string& body, const WrenchFrames&
 
 const char* ToString(WrenchMsgRejection rejection) {
   switch (rejection) {
-    case WrenchMsgRejection::kNone: return "accepted";
-    case WrenchMsgRejection::kNonFinite: return "non_finite";
-    case WrenchMsgRejection::kUnknownBody: return "unknown_body";
-    case WrenchMsgRejection::kParticleOutOfRange: return "particle_out_of_range";
-    case WrenchMsgRejection::kUnknownFrame: return "unknown_frame";
-    case WrenchMsgRejection::kTooManyEntries: return "too_many_entries";
-    case WrenchMsgRejection::kLockstepFutureStamp: return "lockstep_future_stamp";
-    case WrenchMsgRejection::kOtherShard: return "other_shard";
+    case WrenchMsgRejection::kNone:
+      return "accepted";
+    case WrenchMsgRejection::kNonFinite:
+      return "non_finite";
+    case WrenchMsgRejection::kUnknownBody:
+      return "unknown_body";
+    case WrenchMsgRejection::kParticleOutOfRange:
+      return "particle_out_of_range";
+    case WrenchMsgRejection::kUnknownFrame:
+      return "unknown_frame";
+    case WrenchMsgRejection::kTooManyEntries:
+      return "too_many_entries";
+    case WrenchMsgRejection::kLockstepFutureStamp:
+      return "lockstep_future_stamp";
+    case WrenchMsgRejection::kOtherShard:
+      return "other_shard";
   }
   return "unknown";
 }
@@ -61,7 +69,8 @@ void RemoveBodyFrame(const std::string& name, WrenchFrames* frames) {
   for (auto& [other, index] : frames->body_index) {
     if (index > body) --index;
   }
-  frames->particle_counts.erase(frames->particle_counts.begin() + static_cast<std::ptrdiff_t>(body));
+  frames->particle_counts.erase(frames->particle_counts.begin() +
+                                static_cast<std::ptrdiff_t>(body));
 }
 
 std::string QuotedName(const std::string& name) {
@@ -90,8 +99,8 @@ std::optional<core::WrenchAxes> AxesOfFrame(const std::string& frame_id, const s
 
 std::string UnknownFrameMessage(const std::string& frame_id, const std::string& body,
                                 const WrenchFrames& frames) {
-  return "unknown frame_id " + QuotedName(frame_id) + " for body " + QuotedName(body) + " (use '', '" +
-         frames.world_frame + "' or '" + BodyFrameId(frames.tf_prefix, body) + "')";
+  return "unknown frame_id " + QuotedName(frame_id) + " for body " + QuotedName(body) +
+         " (use '', '" + frames.world_frame + "' or '" + BodyFrameId(frames.tf_prefix, body) + "')";
 }
 
 double StartTimeOf(const ros::Time& stamp, const ros::Time& start_stamp, double next_step_time_s) {
@@ -116,17 +125,16 @@ CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames&
   const std::size_t body_index = body->second;
   if (msg.particle >= frames.particle_counts[body_index]) {
     return reject(WrenchMsgRejection::kParticleOutOfRange,
-                  "particle " + std::to_string(msg.particle) + " out of range: body '" +
-                      msg.body + "' has " + std::to_string(frames.particle_counts[body_index]) +
-                      " particles");
+                  "particle " + std::to_string(msg.particle) + " out of range: body '" + msg.body +
+                      "' has " + std::to_string(frames.particle_counts[body_index]) + " particles");
   }
 
   const Eigen::Vector3d force = FromVector3Msg(msg.wrench.force);
   const Eigen::Vector3d couple = FromVector3Msg(msg.wrench.torque);
   if (!force.allFinite() || !couple.allFinite()) {
-    return reject(WrenchMsgRejection::kNonFinite,
-                  "NaN or infinite force or torque for body '" + msg.body + "' particle " +
-                      std::to_string(msg.particle));
+    return reject(WrenchMsgRejection::kNonFinite, "NaN or infinite force or torque for body '" +
+                                                      msg.body + "' particle " +
+                                                      std::to_string(msg.particle));
   }
 
   const std::optional<core::WrenchAxes> axes = AxesOfFrame(msg.header.frame_id, msg.body, frames);
@@ -184,10 +192,9 @@ std::optional<core::ParticleWrench> WrenchIntake::Take(const ParticleWrench& msg
   return std::nullopt;
 }
 
-std::optional<core::BodyWrench> WrenchIntake::TakeBodyWrench(const geometry_msgs::WrenchStamped& msg,
-                                                             const std::string& body,
-                                                             const ros::Time& start_stamp,
-                                                             double next_step_time_s) {
+std::optional<core::BodyWrench> WrenchIntake::TakeBodyWrench(
+    const geometry_msgs::WrenchStamped& msg, const std::string& body, const ros::Time& start_stamp,
+    double next_step_time_s) {
   CheckedBodyWrench checked = CheckBodyWrench(msg, body, frames_, start_stamp, next_step_time_s);
   if (checked.accepted()) return checked.wrench;
   Reject("body wrench", checked.rejection, checked.detail);

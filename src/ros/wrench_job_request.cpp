@@ -9,8 +9,8 @@ namespace rigid_body_sim {
 
 std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& request,
                                               const WrenchFrames& frames,
-                                              const ros::Time& start_stamp,
-                                              double next_step_time_s, std::string* message) {
+                                              const ros::Time& start_stamp, double next_step_time_s,
+                                              std::string* message) {
   const auto body = frames.body_index.find(request.body);
   if (body == frames.body_index.end()) {
     *message = "body: " + NotHereMessage(request.body, frames);
@@ -19,7 +19,8 @@ std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& re
   const std::optional<core::WrenchAxes> axes =
       AxesOfFrame(request.reference_frame, request.body, frames);
   if (!axes) {
-    *message = "reference_frame: " + UnknownFrameMessage(request.reference_frame, request.body, frames);
+    *message =
+        "reference_frame: " + UnknownFrameMessage(request.reference_frame, request.body, frames);
     return std::nullopt;
   }
   const Eigen::Vector3d point(request.reference_point.x, request.reference_point.y,
@@ -49,9 +50,8 @@ std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& re
   job.couple = couple;
   job.point_m = point;
   job.start_s = StartTimeOf(request.start_time, start_stamp, next_step_time_s);
-  job.end_s = request.duration > ros::Duration(0)
-                  ? job.start_s + request.duration.toSec()
-                  : std::numeric_limits<double>::infinity();
+  job.end_s = request.duration > ros::Duration(0) ? job.start_s + request.duration.toSec()
+                                                  : std::numeric_limits<double>::infinity();
   if (!(next_step_time_s < job.end_s)) {
     *message = "start_time + duration: the window has already ended (it ends at sim time " +
                std::to_string(job.end_s) + " s, the next step is at " +
@@ -64,12 +64,14 @@ std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& re
 std::string JobRefusalMessage(core::JobRefusal refusal, const std::string& body) {
   switch (refusal) {
     case core::JobRefusal::kBodyFull:
-      return "body '" + body + "' already has " + std::to_string(core::WrenchTable::kMaxJobsPerBody) +
+      return "body '" + body + "' already has " +
+             std::to_string(core::WrenchTable::kMaxJobsPerBody) +
              " live jobs (the most one body may have)";
     case core::JobRefusal::kTableFull:
       return "there are already " + std::to_string(core::WrenchTable::kMaxJobs) +
              " live jobs (the most the node holds)";
-    case core::JobRefusal::kNone: break;
+    case core::JobRefusal::kNone:
+      break;
   }
   return "accepted";
 }

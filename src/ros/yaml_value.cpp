@@ -6,8 +6,8 @@
 #include <new>
 #include <vector>
 
-#include <yaml.h>
 #include <yaml-cpp/yaml.h>
+#include <yaml.h>
 
 #include "rigid_body_sim/ros/scene_params.h"
 
@@ -19,9 +19,9 @@ using XmlRpc::XmlRpcValue;
 // What a value costs once built, as glibc allocates for XmlRpcValue: the
 // 16-byte value itself in its parent, plus what it owns on the heap.
 constexpr std::size_t kSlotBytes = sizeof(XmlRpcValue);
-constexpr std::size_t kStringBytes = 64;       // a new'd std::string, its buffer's header
-constexpr std::size_t kCollectionBytes = 64;   // a new'd std::vector or std::map
-constexpr std::size_t kMapMemberBytes = 80;    // a tree node with its key string
+constexpr std::size_t kStringBytes = 64;      // a new'd std::string, its buffer's header
+constexpr std::size_t kCollectionBytes = 64;  // a new'd std::vector or std::map
+constexpr std::size_t kMapMemberBytes = 80;   // a tree node with its key string
 
 std::string MiB(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
 
@@ -41,7 +41,8 @@ bool CertainlyNumber(const std::string& text) {
     ++i;
     if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
     std::size_t exponent_digits = 0;
-    for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) ++exponent_digits;
+    for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i)
+      ++exponent_digits;
     if (exponent_digits == 0 || exponent_digits > 2) return false;
   }
   return i == text.size();
@@ -60,8 +61,10 @@ bool PlainInt(const std::string& text) {
 XmlRpcValue FromPlainScalar(const std::string& text) {
   // The common numbers directly, as yaml-cpp's stream conversions read them.
   if (CertainlyNumber(text)) {
-    if (PlainInt(text)) return XmlRpcValue(static_cast<int>(std::strtol(text.c_str(), nullptr, 10)));
-    if (text.find_first_of(".eE") != std::string::npos) return XmlRpcValue(std::strtod(text.c_str(), nullptr));
+    if (PlainInt(text))
+      return XmlRpcValue(static_cast<int>(std::strtol(text.c_str(), nullptr, 10)));
+    if (text.find_first_of(".eE") != std::string::npos)
+      return XmlRpcValue(std::strtod(text.c_str(), nullptr));
   }
   const YAML::Node node(text);
   int integer = 0;
@@ -334,10 +337,18 @@ class Parser {
                           event.data.scalar.length);
         out->plain = event.data.scalar.style == YAML_PLAIN_SCALAR_STYLE;
         break;
-      case YAML_ALIAS_EVENT: out->anchor = text(event.data.alias.anchor); break;
-      case YAML_SEQUENCE_START_EVENT: out->anchor = text(event.data.sequence_start.anchor); break;
-      case YAML_MAPPING_START_EVENT: out->anchor = text(event.data.mapping_start.anchor); break;
-      default: out->anchor.clear(); break;
+      case YAML_ALIAS_EVENT:
+        out->anchor = text(event.data.alias.anchor);
+        break;
+      case YAML_SEQUENCE_START_EVENT:
+        out->anchor = text(event.data.sequence_start.anchor);
+        break;
+      case YAML_MAPPING_START_EVENT:
+        out->anchor = text(event.data.mapping_start.anchor);
+        break;
+      default:
+        out->anchor.clear();
+        break;
     }
     yaml_event_delete(&event);
   }

@@ -7,10 +7,10 @@
 namespace rigid_body_sim::core {
 
 struct BodyState {
-  Eigen::Vector3d position = Eigen::Vector3d::Zero();              // x_CM, world [m]
+  Eigen::Vector3d position = Eigen::Vector3d::Zero();               // x_CM, world [m]
   Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();  // body → world, unit
-  Eigen::Vector3d linear_momentum = Eigen::Vector3d::Zero();       // p = M v, world [kg m/s]
-  Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();      // L about the COM, world [kg m²/s]
+  Eigen::Vector3d linear_momentum = Eigen::Vector3d::Zero();        // p = M v, world [kg m/s]
+  Eigen::Vector3d angular_momentum = Eigen::Vector3d::Zero();  // L about the COM, world [kg m²/s]
 };
 
 }  // namespace rigid_body_sim::core

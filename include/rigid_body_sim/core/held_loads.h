@@ -63,8 +63,9 @@ class HeldLoads final : public Load {
   const PrincipalParts& InPrincipalFrame(const Eigen::Quaterniond& body_from_principal) const {
     // Inline, as the loaded lanes ask once per body and step and the parts
     // are almost always kept.
-    return has_principal_parts_ &&
-                   principal_parts_.body_from_principal.coeffs().cwiseEqual(body_from_principal.coeffs()).all()
+    return has_principal_parts_ && principal_parts_.body_from_principal.coeffs()
+                                       .cwiseEqual(body_from_principal.coeffs())
+                                       .all()
                ? principal_parts_
                : NewPrincipalParts(body_from_principal);
   }

@@ -18,8 +18,8 @@ class Integrator;
 // One row of the integrator table.
 struct IntegratorInfo {
   const char* name;
-  int order;             // global order of accuracy on smooth problems
-  const char* summary;   // one line for users
+  int order;            // global order of accuracy on smooth problems
+  const char* summary;  // one line for users
   std::unique_ptr<Integrator> (*make)();
 };
 
@@ -37,12 +37,14 @@ class Integrator {
   // full rank, with neither force nor torque) by dt_s, as Step with a null
   // load would. A scheme may step several at a time in SIMD lanes; this
   // default steps them one by one. Checking the new states is the caller's.
-  virtual void StepFree(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
-                        double dt_s, std::vector<BodyState>* states) const;
+  virtual void StepFree(const std::vector<BodyModel>& models,
+                        const std::vector<std::size_t>& bodies, double dt_s,
+                        std::vector<BodyState>* states) const;
   // Advances the full-rank bodies `bodies` under their held loads
   // (loads[body]) by dt_s, as Step would, several at a time where a scheme
   // can; this default steps them one by one.
-  virtual void StepLoaded(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
+  virtual void StepLoaded(const std::vector<BodyModel>& models,
+                          const std::vector<std::size_t>& bodies,
                           const std::vector<HeldLoads>& loads, double dt_s,
                           std::vector<BodyState>* states) const;
 

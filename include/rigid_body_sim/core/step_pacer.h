@@ -41,9 +41,9 @@ class StepPacer {
  private:
   double dt_s_;
   bool paced_ = false;
-  Clock::duration period_{};        // wall time per step
+  Clock::duration period_{};  // wall time per step
   std::uint64_t max_batch_;
-  Clock::time_point anchor_{};      // when step 0 since the anchor was due
+  Clock::time_point anchor_{};  // when step 0 since the anchor was due
   std::uint64_t taken_since_anchor_ = 0;
   std::uint64_t overruns_ = 0;
   std::uint64_t catch_up_limit_hits_ = 0;

@@ -10,7 +10,8 @@
 namespace rigid_body_sim::core {
 
 struct StepRecord {
-  Eigen::Vector3d start_velocity_mps = Eigen::Vector3d::Zero();  // v = p / M at the step's start, world
+  Eigen::Vector3d start_velocity_mps =
+      Eigen::Vector3d::Zero();  // v = p / M at the step's start, world
   // Held wrenches, gravity and damping, evaluated at the step's start state:
   // force at the COM and torque about it, world axes.
   Wrench wrench;

@@ -31,7 +31,8 @@ class ThreadTeam {
   // throw (a throw on a team thread ends the process). One Run at a time.
   template <typename Work>
   void Run(Work& work) {
-    RunErased(&work, [](void* erased, std::size_t member) { (*static_cast<Work*>(erased))(member); });
+    RunErased(&work,
+              [](void* erased, std::size_t member) { (*static_cast<Work*>(erased))(member); });
   }
 
   // Calls work(member, begin, end) for the contiguous blocks [begin, end) of
@@ -67,7 +68,7 @@ class ThreadTeam {
   std::size_t running_ = 0;  // team threads still in this round
   bool stopping_ = false;
   std::atomic<std::size_t> next_block_{0};  // ForBlocks' next block to take
-  std::vector<std::thread> threads_;  // last: started once the rest exists
+  std::vector<std::thread> threads_;        // last: started once the rest exists
 };
 
 }  // namespace rigid_body_sim::core

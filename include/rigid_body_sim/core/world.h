@@ -66,7 +66,9 @@ class World {
   const WorldOptions& options() const { return options_; }
 
   // t_n = t_0 + n·dt, from the step count so it never drifts.
-  double time() const { return options_.start_time_s + static_cast<double>(steps_) * options_.dt_s; }
+  double time() const {
+    return options_.start_time_s + static_cast<double>(steps_) * options_.dt_s;
+  }
   std::uint64_t step_count() const { return steps_; }
 
   // Advances every body from t_n to t_(n+1) with the wrenches active at t_n

@@ -44,11 +44,11 @@ struct BodyWrench {
 struct WrenchJob {
   std::size_t body = 0;
   WrenchAxes axes = WrenchAxes::kWorld;
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();   // [N], at point_m
-  Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // [N m]
-  Eigen::Vector3d point_m = Eigen::Vector3d::Zero(); // body frame: from the COM, body axes
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();    // [N], at point_m
+  Eigen::Vector3d couple = Eigen::Vector3d::Zero();   // [N m]
+  Eigen::Vector3d point_m = Eigen::Vector3d::Zero();  // body frame: from the COM, body axes
   double start_s = 0.0;
-  double end_s = 0.0;                                // +inf: until cleared
+  double end_s = 0.0;  // +inf: until cleared
 };
 
 // Why AddJob refused a job.
@@ -83,11 +83,10 @@ class WrenchTable {
   static constexpr std::size_t kMaxJobs = 100000;
 
   // Sums the wrenches active at t_s (start <= t_s and, for timeout_s > 0,
-  // t_s < start + timeout_s; for a job, start <= t_s < end) into loads[b] for every body b that has one and
-  // sets loaded[b]; others are left cleared. Expired wrenches are dropped.
-  // Times closer than tolerance_s count as equal, so that a stamp computed
-  // as t_0 + n·dt elsewhere lands on step n despite round-off.
-  // Held wrenches rarely change between steps: when nothing was held or
+  // t_s < start + timeout_s; for a job, start <= t_s < end) into loads[b] for every body b that has
+  // one and sets loaded[b]; others are left cleared. Expired wrenches are dropped. Times closer
+  // than tolerance_s count as equal, so that a stamp computed as t_0 + n·dt elsewhere lands on step
+  // n despite round-off. Held wrenches rarely change between steps: when nothing was held or
   // cleared since the last call and no wrench starts or expires by t_s, the
   // loads of that call still hold and are left alone. Returns whether the
   // loads were summed anew.

@@ -65,7 +65,8 @@ class BodyTopics {
   // Body `index`'s topics, or nullptr while they are not yet advertised.
   const Topics* at(std::size_t index) const {
     const Topics* topics = bodies_[index].get();
-    return topics != nullptr && topics->advertised.load(std::memory_order_acquire) ? topics : nullptr;
+    return topics != nullptr && topics->advertised.load(std::memory_order_acquire) ? topics
+                                                                                   : nullptr;
   }
   // Subscribers to any body's imu or applied_wrench, which need the world to
   // record the step before a publish cycle.

@@ -16,9 +16,9 @@
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/body_topics.h"
 #include "rigid_body_sim/ros/lockstep_gate.h"
-#include "rigid_body_sim/ros/state_hash_worker.h"
 #include "rigid_body_sim/ros/log_thread.h"
 #include "rigid_body_sim/ros/scene_params.h"
+#include "rigid_body_sim/ros/state_hash_worker.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
 
 namespace rigid_body_sim {

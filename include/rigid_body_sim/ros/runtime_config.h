@@ -8,10 +8,10 @@
 #include <optional>
 #include <string>
 
-#include <boost/thread/recursive_mutex.hpp>
 #include <dynamic_reconfigure/server.h>
-#include <ros/node_handle.h>
 #include <rigid_body_sim/SimulationNodeConfig.h>
+#include <ros/node_handle.h>
+#include <boost/thread/recursive_mutex.hpp>
 
 #include "rigid_body_sim/ros/scene_params.h"
 

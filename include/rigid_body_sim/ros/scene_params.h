@@ -8,14 +8,14 @@
 #include <unordered_map>
 #include <vector>
 
-#include <Eigen/Core>
 #include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcValue.h>
+#include <Eigen/Core>
 
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_properties.h"
-#include "rigid_body_sim/core/imu_noise.h"
 #include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/imu_noise.h"
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/world.h"
 
@@ -39,21 +39,21 @@ struct ShardSettings {
 
 struct NodeSettings {
   std::string world_frame = "world";
-  std::string tf_prefix;                // prepended as written to body names for TF
-  double rate_hz = 1000.0;              // integration rate, dt = 1 / rate
-  double publish_rate_hz = 100.0;       // output rate, <= rate
+  std::string tf_prefix;           // prepended as written to body names for TF
+  double rate_hz = 1000.0;         // integration rate, dt = 1 / rate
+  double publish_rate_hz = 100.0;  // output rate, <= rate
   std::string integrator = core::kDefaultIntegrator;
   Eigen::Vector3d gravity_mps2 = Eigen::Vector3d::Zero();
-  double wrench_timeout_s = 0.0;        // 0: a wrench is held until replaced
-  double real_time_factor = 1.0;        // 0: as fast as possible
+  double wrench_timeout_s = 0.0;  // 0: a wrench is held until replaced
+  double real_time_factor = 1.0;  // 0: as fast as possible
   bool publish_clock = false;
   bool publish_tf = true;
   // Each body's own topics (~<body>/pose, ...) advertised (extension): off
   // spares the master 6 registrations per body in very large scenes.
   bool per_body_topics = true;
-  core::ImuNoise imu_noise;  // ~imu_*_stddev, ~imu_seed; exact by default
+  core::ImuNoise imu_noise;                  // ~imu_*_stddev, ~imu_seed; exact by default
   double particle_marker_diameter_m = 0.04;  // ~particles sphere size (extension)
-  double status_period_s = 1.0;  // the INFO status line's period, 0: never (extension)
+  double status_period_s = 1.0;              // the INFO status line's period, 0: never (extension)
   // Most substeps of dt/n one body may take in a step (extension); the
   // default bounds one body's worst step to a small share of a 1 kHz step
   // in scenes of 10⁴ bodies.

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
 #include <ros/ros.h>
+#include <Eigen/Core>
 
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/body_topics.h"

@@ -1,8 +1,8 @@
 // Every inbound wrench message, a particle wrench (a message or an array
 // entry) or a body wrench (~<body>/wrench), checked once (doc/node.md, "Time,
-// frames and pacing"): a known body and particle, finite numbers, a known frame. What passes becomes a core wrench with its start
-// time; what fails is counted by reason and warned about (throttled), and
-// changes nothing else. The core's wrench table trusts what comes out.
+// frames and pacing"): a known body and particle, finite numbers, a known frame. What passes
+// becomes a core wrench with its start time; what fails is counted by reason and warned about
+// (throttled), and changes nothing else. The core's wrench table trusts what comes out.
 #pragma once
 
 #include <algorithm>
@@ -19,8 +19,8 @@
 #include <rigid_body_sim/ParticleWrenchArray.h>
 #include <ros/time.h>
 
-#include "rigid_body_sim/core/wrench_table.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/core/wrench_table.h"
 #include "rigid_body_sim/ros/log_thread.h"
 
 namespace rigid_body_sim {
@@ -32,9 +32,9 @@ enum class WrenchMsgRejection {
   kUnknownBody,
   kParticleOutOfRange,
   kUnknownFrame,
-  kTooManyEntries,  // array entries past WrenchIntake::kMaxArrayEntries
+  kTooManyEntries,       // array entries past WrenchIntake::kMaxArrayEntries
   kLockstepFutureStamp,  // a lockstep answer stamped after the last published cycle
-  kOtherShard,  // a body another shard simulates: ignored, counted apart, not a rejection
+  kOtherShard,           // a body another shard simulates: ignored, counted apart, not a rejection
 };
 constexpr std::size_t kWrenchMsgRejectionCount = 8;
 // "non_finite", "unknown_body", "particle_out_of_range", "unknown_frame",
@@ -53,10 +53,10 @@ struct WrenchFrames {
   std::unordered_map<std::string, std::uint32_t> other_shard_bodies;
   std::uint32_t shard_count = 1;
 };
-WrenchFrames MakeWrenchFrames(const core::World& world, const std::string& world_frame,
-                              const std::string& tf_prefix,
-                              std::unordered_map<std::string, std::uint32_t> other_shard_bodies = {},
-                              std::uint32_t shard_count = 1);
+WrenchFrames MakeWrenchFrames(
+    const core::World& world, const std::string& world_frame, const std::string& tf_prefix,
+    std::unordered_map<std::string, std::uint32_t> other_shard_bodies = {},
+    std::uint32_t shard_count = 1);
 // `name` in single quotes, its first 128 bytes only when it is longer.
 std::string QuotedName(const std::string& name);
 // Why `body` is not one of this node's: "unknown body 'x'", or, for a body of
@@ -76,9 +76,9 @@ std::string UnknownFrameMessage(const std::string& frame_id, const std::string& 
                                 const WrenchFrames& frames);
 
 struct CheckedWrench {
-  core::ParticleWrench wrench;                        // valid when accepted
+  core::ParticleWrench wrench;  // valid when accepted
   WrenchMsgRejection rejection = WrenchMsgRejection::kNone;
-  std::string detail;                                 // one line for the warning
+  std::string detail;  // one line for the warning
   bool accepted() const { return rejection == WrenchMsgRejection::kNone; }
 };
 
@@ -133,15 +133,16 @@ class WrenchIntake {
                  std::vector<std::string>* rejections = nullptr) {
     const std::size_t taken = std::min(entries.size(), kMaxArrayEntries);
     for (std::size_t i = 0; i < taken; ++i) {
-      const CheckedWrench checked = CheckParticleWrench(entries[i], frames_, start_stamp, next_step_time_s);
+      const CheckedWrench checked =
+          CheckParticleWrench(entries[i], frames_, start_stamp, next_step_time_s);
       if (checked.accepted()) {
         hold(checked.wrench);
         continue;
       }
       Reject("particle wrench", checked.rejection, checked.detail);
       if (rejections != nullptr && checked.rejection != WrenchMsgRejection::kOtherShard) {
-        rejections->push_back("wrenches[" + std::to_string(i) + "]: " + ToString(checked.rejection) +
-                              ": " + checked.detail);
+        rejections->push_back("wrenches[" + std::to_string(i) +
+                              "]: " + ToString(checked.rejection) + ": " + checked.detail);
       }
     }
     if (taken == entries.size()) return;

@@ -19,8 +19,8 @@ namespace rigid_body_sim {
 // Times as for wrench messages: a zero start_time is `next_step_time_s`.
 std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& request,
                                               const WrenchFrames& frames,
-                                              const ros::Time& start_stamp,
-                                              double next_step_time_s, std::string* message);
+                                              const ros::Time& start_stamp, double next_step_time_s,
+                                              std::string* message);
 
 // The reply to a job the world refused for its limits.
 std::string JobRefusalMessage(core::JobRefusal refusal, const std::string& body);

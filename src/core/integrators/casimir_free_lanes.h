@@ -98,7 +98,7 @@ struct FreeLanes : LaneBodies {
 // added to the orientation once. The bodies in use must fit (FitsFreeLanes).
 template <std::size_t n>
 inline __attribute__((always_inline)) void CompositionFreeLanes(const AxisSplitting<n>& splitting,
-                                                                 double h, FreeLanes* lanes) {
+                                                                double h, FreeLanes* lanes) {
   using lanes::Quaternion;
   FreeLanes& b = *lanes;
   for (std::size_t l = 0; l < kLanes; ++l) {
@@ -125,7 +125,8 @@ inline __attribute__((always_inline)) void CompositionFreeLanes(const AxisSplitt
     lanes::Axis1FlowIncrement(a1, splitting.axis1[n] * h, m, &turn);
 
     const double angle = h * b.casimir[l];
-    const Quaternion about_momentum = lanes::ExpMapSmallIncrement(angle * lx, angle * ly, angle * lz);
+    const Quaternion about_momentum =
+        lanes::ExpMapSmallIncrement(angle * lx, angle * ly, angle * lz);
     const Quaternion q = lanes::AddStepRotation(orientation, principal, axes, turn, about_momentum);
     b.orientation[0][l] = q.x;
     b.orientation[1][l] = q.y;

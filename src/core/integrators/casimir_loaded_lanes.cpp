@@ -78,8 +78,8 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
   for (std::size_t l = 0; l < kLanes; ++l) {
     const Quaternion axes{b.principal_axes[0][l], b.principal_axes[1][l], b.principal_axes[2][l],
                           b.principal_axes[3][l]};
-    Quaternion q = Multiply(Quaternion{b.orientation[0][l], b.orientation[1][l], b.orientation[2][l],
-                                       b.orientation[3][l]},
+    Quaternion q = Multiply(Quaternion{b.orientation[0][l], b.orientation[1][l],
+                                       b.orientation[2][l], b.orientation[3][l]},
                             axes);
     double x[3], p[3], lw[3], fw[3], fp[3] = {}, tw[3], tp[3] = {}, c[9];
     for (int k = 0; k < 3; ++k) {
@@ -102,7 +102,9 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
       double a[9];
       lanes::RotationMatrix(q, a);
       // M = C_P Aᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
-      const auto m = [&](int i, int j) __attribute__((always_inline)) { return c[3 * i] * a[3 * j] + c[3 * i + 1] * a[3 * j + 1] + c[3 * i + 2] * a[3 * j + 2]; };
+      const auto m = [&](int i, int j) __attribute__((always_inline)) {
+        return c[3 * i] * a[3 * j] + c[3 * i + 1] * a[3 * j + 1] + c[3 * i + 2] * a[3 * j + 2];
+      };
       const double moment_torque[3] = {m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1)};
       for (int k = 0; k < 3; ++k) {
         double force = fw[k], torque = tw[k] + moment_torque[k];

@@ -28,7 +28,8 @@ inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, cons
   const double turn = kLongestSubstep * dt_s * model.inverse_principal_moments().maxCoeff();
   const double kick = dt_s * loads.TorqueBound();
   // Squared, to spare the root: (|L| + kick)² <= 2 |L|² + 2 kick².
-  return turn * turn * 2.0 * (state.angular_momentum.squaredNorm() + kick * kick) <= kMaxTurn * kMaxTurn;
+  return turn * turn * 2.0 * (state.angular_momentum.squaredNorm() + kick * kick) <=
+         kMaxTurn * kMaxTurn;
 }
 
 struct LoadedLanes : LaneBodies {
@@ -39,7 +40,7 @@ struct LoadedLanes : LaneBodies {
   double force_principal[3][kLanes];
   double torque_world[3][kLanes];
   double torque_principal[3][kLanes];
-  double moment[9][kLanes];  // C_P = C R_BP, row-major
+  double moment[9][kLanes];        // C_P = C R_BP, row-major
   double linear_damping[kLanes];   // [1/s]
   double angular_damping[kLanes];  // [1/s]
   // Whether a lane loaded since the last step holds a body-axes force or couple.
@@ -47,7 +48,8 @@ struct LoadedLanes : LaneBodies {
   // Whether a lane loaded since the last step is damped.
   bool damped = false;
 
-  void Load(std::size_t lane, const BodyModel& model, const BodyState& state, const HeldLoads& loads);
+  void Load(std::size_t lane, const BodyModel& model, const BodyState& state,
+            const HeldLoads& loads);
   // LaneBodies::FillIdle with no load.
   void FillIdle(std::size_t first);
   // Writes the lane's state to `state`.

@@ -54,8 +54,8 @@ void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load,
   }
 }
 
-double CasimirSplitting4Integrator::RotationErrorRate(const BodyModel& model, const BodyState& state,
-                                                      double dt_s) const {
+double CasimirSplitting4Integrator::RotationErrorRate(const BodyModel& model,
+                                                      const BodyState& state, double dt_s) const {
   return CasimirErrorRate(model, CasimirSplit(model), state, dt_s);
 }
 

@@ -16,13 +16,16 @@ double CasimirErrorRate(const BodyModel& model, const CasimirSplit& split, const
   const double momentum = body_momentum.norm();
   const double a1 = std::abs(split.axis1), a3 = std::abs(split.axis3);
   const double axis1_rate =
-      a1 * (a3 * momentum * h <= kSlowTurn ? std::hypot(body_momentum[0], body_momentum[1]) : momentum);
+      a1 *
+      (a3 * momentum * h <= kSlowTurn ? std::hypot(body_momentum[0], body_momentum[1]) : momentum);
   const double axis3_rate =
-      a3 * (a1 * momentum * h <= kSlowTurn ? std::hypot(body_momentum[1], body_momentum[2]) : momentum);
+      a3 *
+      (a1 * momentum * h <= kSlowTurn ? std::hypot(body_momentum[1], body_momentum[2]) : momentum);
   return std::cbrt(axis1_rate * axis3_rate * (axis1_rate + axis3_rate));
 }
 
-void CasimirRotation(const BodyModel& model, const CasimirSplit& split, double h, BodyState* state) {
+void CasimirRotation(const BodyModel& model, const CasimirSplit& split, double h,
+                     BodyState* state) {
   const Eigen::Quaterniond& body_from_principal = model.principal_axes();
   Eigen::Quaterniond principal = state->orientation * body_from_principal;
   Eigen::Vector3d body_momentum = principal.conjugate() * state->angular_momentum;

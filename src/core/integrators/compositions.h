@@ -62,15 +62,14 @@ struct KickSplitting {
 };
 
 // Yoshida, Phys. Lett. A 150 (1990) 262–268: the triple jump, fourth order.
-inline constexpr std::array<double, 3> kYoshida3Weights = {
-    kYoshidaOuterWeight, kYoshidaInnerWeight, kYoshidaOuterWeight};
+inline constexpr std::array<double, 3> kYoshida3Weights = {kYoshidaOuterWeight, kYoshidaInnerWeight,
+                                                           kYoshidaOuterWeight};
 
 // Yoshida (1990), solution A: the 7-stage symmetric composition of order 6,
 // the fewest stages for order 6.
 inline constexpr std::array<double, 7> kYoshida7Weights = {
-    0.78451361047755726382, 0.23557321335935813368, -1.17767998417887100695,
-    1.3151863206839112189, -1.17767998417887100695, 0.23557321335935813368,
-    0.78451361047755726382};
+    0.78451361047755726382,  0.23557321335935813368, -1.17767998417887100695, 1.3151863206839112189,
+    -1.17767998417887100695, 0.23557321335935813368, 0.78451361047755726382};
 
 // Blanes & Moan, J. Comput. Appl. Math. 142 (2002) 313–330, S6: the 6-stage
 // symmetric partitioned Runge–Kutta splitting of order 4 for any two parts
@@ -156,7 +155,8 @@ void FreeCompositionStep(const AxisSplitting<n>& splitting, const BodyModel& mod
   Eigen::Vector3d body_momentum = principal.conjugate() * state->angular_momentum;
   RotationIncrement turn;
   AxisFlows(splitting, split, h, &body_momentum, &turn);
-  const RotationIncrement about_momentum = ExpMapIncrement(h * split.casimir * state->angular_momentum);
+  const RotationIncrement about_momentum =
+      ExpMapIncrement(h * split.casimir * state->angular_momentum);
   AddStepRotation(principal, body_from_principal, turn, about_momentum, &state->orientation);
   state->position += h * model.inverse_mass() * state->linear_momentum;
 }

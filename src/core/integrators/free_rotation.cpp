@@ -35,10 +35,12 @@ void AddStepRotation(const Eigen::Quaterniond& principal, const Eigen::Quaternio
                      const RotationIncrement& turn, const RotationIncrement& about_momentum,
                      Eigen::Quaterniond* orientation) {
   const Eigen::Quaterniond t(turn.w, turn.x, turn.y, turn.z);
-  const Eigen::Quaterniond e(about_momentum.w, about_momentum.x, about_momentum.y, about_momentum.z);
+  const Eigen::Quaterniond e(about_momentum.w, about_momentum.x, about_momentum.y,
+                             about_momentum.z);
   const Eigen::Quaterniond turned = principal * t;
   const Eigen::Quaterniond moved = e * Eigen::Quaterniond(principal.coeffs() + turned.coeffs());
-  const Eigen::Quaterniond change = Eigen::Quaterniond(turned.coeffs() + moved.coeffs()) * axes.conjugate();
+  const Eigen::Quaterniond change =
+      Eigen::Quaterniond(turned.coeffs() + moved.coeffs()) * axes.conjugate();
   const double norm_drift = 0.5 * (orientation->squaredNorm() - 1.0);
   orientation->coeffs() += change.coeffs() - norm_drift * (orientation->coeffs() + change.coeffs());
 }

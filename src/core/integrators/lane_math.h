@@ -8,7 +8,8 @@
 // or built with -DRBS_SIMD_CLONES=OFF (the same bits on every x86-64
 // machine, doc/testing.md), the compiler's default vectorisation.
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__)) && !defined(RBS_NO_SIMD_CLONES)
-#define RBS_SIMD_CLONES __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+#define RBS_SIMD_CLONES \
+  __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #else
 #define RBS_SIMD_CLONES
 #endif
@@ -20,10 +21,9 @@ struct Quaternion {
 };
 
 inline Quaternion Multiply(const Quaternion& a, const Quaternion& b) {
-  return {a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y,
-          a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
-          a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w,
-          a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
+  return {
+      a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
+      a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
 
 // exp of the rotation vector θ for |θ| <= 1/16, by the series of cos(|θ|/2)
@@ -32,7 +32,8 @@ inline Quaternion Multiply(const Quaternion& a, const Quaternion& b) {
 // as the unit quaternion.
 inline Quaternion ExpMapSmallIncrement(double theta_x, double theta_y, double theta_z) {
   const double u2 = 0.25 * (theta_x * theta_x + theta_y * theta_y + theta_z * theta_z);
-  const double half_cos_minus_one = u2 * (-1.0 / 2 + u2 * (1.0 / 24 + u2 * (-1.0 / 720 + u2 * (1.0 / 40320))));
+  const double half_cos_minus_one =
+      u2 * (-1.0 / 2 + u2 * (1.0 / 24 + u2 * (-1.0 / 720 + u2 * (1.0 / 40320))));
   const double sin_ratio =
       0.5 * (1.0 + u2 * (-1.0 / 6 + u2 * (1.0 / 120 + u2 * (-1.0 / 5040 + u2 * (1.0 / 362880)))));
   return {sin_ratio * theta_x, sin_ratio * theta_y, sin_ratio * theta_z, half_cos_minus_one};
@@ -74,17 +75,20 @@ inline void Axis3FlowIncrement(double coefficient, double h, double* m, Quaterni
 // Δ = (principal t + e (principal + principal t)) axes*, less the drift of
 // its norm along orientation + Δ; t and e are rotation increments.
 inline Quaternion AddStepRotation(const Quaternion& orientation, const Quaternion& principal,
-                                  const Quaternion& axes, const Quaternion& t, const Quaternion& e) {
+                                  const Quaternion& axes, const Quaternion& t,
+                                  const Quaternion& e) {
   const Quaternion turned = Multiply(principal, t);
   const Quaternion moved = Multiply(e, Quaternion{principal.x + turned.x, principal.y + turned.y,
                                                   principal.z + turned.z, principal.w + turned.w});
-  const Quaternion change =
-      Multiply(Quaternion{turned.x + moved.x, turned.y + moved.y, turned.z + moved.z, turned.w + moved.w},
-               Quaternion{-axes.x, -axes.y, -axes.z, axes.w});
+  const Quaternion change = Multiply(
+      Quaternion{turned.x + moved.x, turned.y + moved.y, turned.z + moved.z, turned.w + moved.w},
+      Quaternion{-axes.x, -axes.y, -axes.z, axes.w});
   const Quaternion& q = orientation;
   const double norm_drift = 0.5 * (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w - 1.0);
-  return {q.x + (change.x - norm_drift * (q.x + change.x)), q.y + (change.y - norm_drift * (q.y + change.y)),
-          q.z + (change.z - norm_drift * (q.z + change.z)), q.w + (change.w - norm_drift * (q.w + change.w))};
+  return {q.x + (change.x - norm_drift * (q.x + change.x)),
+          q.y + (change.y - norm_drift * (q.y + change.y)),
+          q.z + (change.z - norm_drift * (q.z + change.z)),
+          q.w + (change.w - norm_drift * (q.w + change.w))};
 }
 
 // R(q)ᵀ v for a unit q: v + w t + n × t with n = −q_vec and t = 2 n × v.

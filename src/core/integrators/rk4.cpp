@@ -96,9 +96,11 @@ void Rk4Integrator::Step(const BodyModel& model, const Load* load, double dt_s,
       y0.orientation + w * (k1.orientation_rate + 2.0 * k2.orientation_rate +
                             2.0 * k3.orientation_rate + k4.orientation_rate);
   state->orientation =
-      Eigen::Quaterniond(orientation[0], orientation[1], orientation[2], orientation[3]).normalized();
-  state->linear_momentum = y0_decayed.linear_momentum +
-                           w * (k1_decayed.force + 2.0 * k2_decayed.force + 2.0 * k3_decayed.force + k4.force);
+      Eigen::Quaterniond(orientation[0], orientation[1], orientation[2], orientation[3])
+          .normalized();
+  state->linear_momentum =
+      y0_decayed.linear_momentum +
+      w * (k1_decayed.force + 2.0 * k2_decayed.force + 2.0 * k3_decayed.force + k4.force);
   state->angular_momentum =
       y0_decayed.angular_momentum +
       w * (k1_decayed.torque + 2.0 * k2_decayed.torque + 2.0 * k3_decayed.torque + k4.torque);

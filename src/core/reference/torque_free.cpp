@@ -63,7 +63,8 @@ TorqueFreeMotion::TorqueFreeMotion(const Eigen::Vector3d& principal_moments,
   const double l2 = principal_moments[1];
   const double l3 = principal_moments[2];
   if (!(principal_moments.allFinite() && 0.0 <= l1 && l1 <= l2 && l2 <= l3)) {
-    throw std::invalid_argument("TorqueFreeMotion: principal moments must be finite, >= 0, ascending");
+    throw std::invalid_argument(
+        "TorqueFreeMotion: principal moments must be finite, >= 0, ascending");
   }
   for (int k = 0; k < 3; ++k) {
     if (principal_moments[k] == 0.0) initial_momentum_[k] = 0.0;
@@ -148,8 +149,8 @@ TorqueFreeMotion::TorqueFreeMotion(const Eigen::Vector3d& principal_moments,
     }
     quarter_period_ = M_PI / (2.0 * agm_mean_[agm_steps_]);
     complete_third_kind_ =
-        quarter_period_ + characteristic_ / 3.0 *
-                              CarlsonRJ(0.0, complementary_squared_, 1.0, 1.0 - characteristic_);
+        quarter_period_ +
+        characteristic_ / 3.0 * CarlsonRJ(0.0, complementary_squared_, 1.0, 1.0 - characteristic_);
     // u0 = F(φ0 | k), φ0 = atan2(sn0, cn0) in (−π, π]; F(π − φ) = 2K − F(φ).
     const double radius = std::hypot(sn0, cn0);
     const double s = sn0 / radius;
@@ -235,7 +236,8 @@ Eigen::Quaterniond TorqueFreeMotion::Orientation(double t_s) const {
     case Regime::kSteady: {
       const double rate = steady_rate_.norm();
       if (rate == 0.0) return initial_orientation_;
-      return (initial_orientation_ * Eigen::AngleAxisd(rate * t_s, steady_rate_ / rate)).normalized();
+      return (initial_orientation_ * Eigen::AngleAxisd(rate * t_s, steady_rate_ / rate))
+          .normalized();
     }
     case Regime::kSymmetric:
       return (symmetric_->Orientation(t_s) * symmetric_axes_.conjugate()).normalized();

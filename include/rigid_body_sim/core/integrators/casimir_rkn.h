@@ -28,8 +28,7 @@ class CasimirRknIntegrator final : public Integrator {
   static_assert(kOrder == 4 || kOrder == 6);
 
  public:
-  void Step(const BodyModel& model, const Load* load, double dt_s,
-            BodyState* state) const override;
+  void Step(const BodyModel& model, const Load* load, double dt_s, BodyState* state) const override;
   double RotationErrorRate(const BodyModel& model, const BodyState& state,
                            double dt_s) const override;
   void StepFree(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,

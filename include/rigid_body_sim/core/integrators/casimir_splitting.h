@@ -14,8 +14,7 @@ namespace rigid_body_sim::core {
 
 class CasimirSplittingIntegrator final : public Integrator {
  public:
-  void Step(const BodyModel& model, const Load* load, double dt_s,
-            BodyState* state) const override;
+  void Step(const BodyModel& model, const Load* load, double dt_s, BodyState* state) const override;
   double RotationErrorRate(const BodyModel& model, const BodyState& state,
                            double dt_s) const override;
 };

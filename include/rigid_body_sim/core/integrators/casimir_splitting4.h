@@ -19,8 +19,7 @@ namespace rigid_body_sim::core {
 
 class CasimirSplitting4Integrator final : public Integrator {
  public:
-  void Step(const BodyModel& model, const Load* load, double dt_s,
-            BodyState* state) const override;
+  void Step(const BodyModel& model, const Load* load, double dt_s, BodyState* state) const override;
   double RotationErrorRate(const BodyModel& model, const BodyState& state,
                            double dt_s) const override;
   void StepFree(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,

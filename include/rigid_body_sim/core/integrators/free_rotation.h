@@ -19,7 +19,8 @@ inline void SinCosMinusOneSmall(double x, double* sin_x, double* cos_x_minus_one
   const double x2 = x * x;
   *sin_x = x + x * x2 * (-1.0 / 6 + x2 * (1.0 / 120 + x2 * (-1.0 / 5040 + x2 * (1.0 / 362880))));
   *cos_x_minus_one =
-      x2 * (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800)))));
+      x2 *
+      (-1.0 / 2 + x2 * (1.0 / 24 + x2 * (-1.0 / 720 + x2 * (1.0 / 40320 + x2 * (-1.0 / 3628800)))));
 }
 
 inline void SinCosSmall(double x, double* sin_x, double* cos_x) {

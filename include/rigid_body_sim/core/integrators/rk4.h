@@ -9,8 +9,7 @@ namespace rigid_body_sim::core {
 
 class Rk4Integrator final : public Integrator {
  public:
-  void Step(const BodyModel& model, const Load* load, double dt_s,
-            BodyState* state) const override;
+  void Step(const BodyModel& model, const Load* load, double dt_s, BodyState* state) const override;
 };
 
 }  // namespace rigid_body_sim::core

@@ -12,8 +12,7 @@ namespace rigid_body_sim::core {
 
 class SplittingIntegrator final : public Integrator {
  public:
-  void Step(const BodyModel& model, const Load* load, double dt_s,
-            BodyState* state) const override;
+  void Step(const BodyModel& model, const Load* load, double dt_s, BodyState* state) const override;
 };
 
 }  // namespace rigid_body_sim::core

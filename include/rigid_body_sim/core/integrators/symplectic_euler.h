@@ -10,8 +10,7 @@ namespace rigid_body_sim::core {
 
 class SymplecticEulerIntegrator final : public Integrator {
  public:
-  void Step(const BodyModel& model, const Load* load, double dt_s,
-            BodyState* state) const override;
+  void Step(const BodyModel& model, const Load* load, double dt_s, BodyState* state) const override;
 };
 
 }  // namespace rigid_body_sim::core

@@ -17,8 +17,7 @@ class SymmetricTopMotion {
   // particle) freezes the body. Throws std::invalid_argument on a negative or
   // non-finite moment.
   SymmetricTopMotion(double transverse_moment, double axial_moment,
-                     const Eigen::Vector3d& body_momentum,
-                     const Eigen::Quaterniond& orientation);
+                     const Eigen::Vector3d& body_momentum, const Eigen::Quaterniond& orientation);
 
   Eigen::Vector3d BodyMomentum(double t_s) const;
   Eigen::Quaterniond Orientation(double t_s) const;

@@ -24,8 +24,7 @@ class TorqueFreeMotion {
   // as a symmetric top. Throws std::invalid_argument on moments that are not
   // finite, negative or not ascending, or a single null moment with λ_2 ≠ λ_3
   // (no set of particles has that).
-  TorqueFreeMotion(const Eigen::Vector3d& principal_moments,
-                   const Eigen::Vector3d& body_momentum,
+  TorqueFreeMotion(const Eigen::Vector3d& principal_moments, const Eigen::Vector3d& body_momentum,
                    const Eigen::Quaterniond& orientation);
 
   // Π(t), principal axes.
@@ -73,13 +72,13 @@ class TorqueFreeMotion {
   int cn_axis_ = 0;
   int dn_axis_ = 2;
   Eigen::Vector3d amplitudes_ = Eigen::Vector3d::Zero();  // A_1, s A_2, s A_3 (signed)
-  double modulus_ = 0.0;                // k
-  double complementary_squared_ = 1.0;  // k'² = 1 − k²
-  double rate_ = 0.0;                   // ν [1/s]
-  double phase_start_ = 0.0;            // u0
-  double quarter_period_ = 0.0;         // K(k)
-  double characteristic_ = 0.0;         // n = −A_a²/A_b² of the third-kind integral
-  double complete_third_kind_ = 0.0;    // Π(n, k)
+  double modulus_ = 0.0;                                  // k
+  double complementary_squared_ = 1.0;                    // k'² = 1 − k²
+  double rate_ = 0.0;                                     // ν [1/s]
+  double phase_start_ = 0.0;                              // u0
+  double quarter_period_ = 0.0;                           // K(k)
+  double characteristic_ = 0.0;       // n = −A_a²/A_b² of the third-kind integral
+  double complete_third_kind_ = 0.0;  // Π(n, k)
   // Arithmetic–geometric mean sequence of (1, k'), for sn/cn by descending Landen.
   std::array<double, kMaxAgmSteps + 1> agm_mean_{};
   std::array<double, kMaxAgmSteps + 1> agm_geometric_{};
