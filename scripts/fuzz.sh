@@ -46,7 +46,8 @@ harness_flags=()
 # The project's own code gets the coverage instrumentation; the sources are
 # the core's list in CMakeLists.txt plus the node files under test.
 mapfile -t sources < <(grep -oE 'src/core/[A-Za-z0-9_/]+\.cpp' "$repo/CMakeLists.txt")
-sources+=(src/ros/scene_params.cpp src/ros/conversions.cpp src/ros/wrench_intake.cpp src/ros/body_state_request.cpp)
+sources+=(src/ros/scene_params.cpp src/ros/imu_noise_params.cpp src/ros/conversions.cpp src/ros/wrench_intake.cpp
+  src/ros/log_thread.cpp src/ros/body_state_request.cpp)
 export repo out cxx
 printf '%s\n' "${sources[@]}" | xargs -P "$jobs" -I{} bash -c '
   src="$1"; shift
