@@ -2,9 +2,14 @@
 """Writes the hand-made seed inputs of the fuzz targets into fuzz/corpus/<target>/seed_*.
 
 The bytes follow the generators in scene_parser_fuzzer.cpp and wrench_fuzzer.cpp
-(see the comments there); re-run after changing a generator:
+(see the comments there); service_text_fuzzer's are YAML texts. Re-run after
+changing a generator:
     python3 fuzz/make_seeds.py
+With --large DIR it writes instead the inputs too large to keep in the
+repository (a 100,000-particle entry, a quadratic alias blow-up, ...) into DIR
+as <target>-<name>; scripts/fuzz.sh runs them before fuzzing.
 """
+import argparse
 import os
 import struct
 
@@ -141,9 +146,93 @@ for i in range(5, 12):
         header(integrator=i, gravity=(1, 0, -1)) + wrench(4, 3, force=(1, 0, 0)) +
         wrench(2, 1, frame=2, force=(0, 0, 1)) + steps(16))
 
-for target, seeds in (("scene_parser_fuzzer", SCENES), ("wrench_fuzzer", WRENCHES)):
-    d = os.path.join(HERE, "corpus", target)
-    os.makedirs(d, exist_ok=True)
-    for name, data in seeds.items():
-        with open(os.path.join(d, "seed_" + name), "wb") as f:
-            f.write(data)
+# ---- service_text_fuzzer ---------------------------------------------------
+# One ~spawn_body entry as YAML text. The harness's world already has a body
+# named "box". Each text stays within FUZZ_MAX_LEN (1024 bytes).
+def billion_laughs(levels=9, fan_out=10):
+    lines = ["a0: &a0 [lol, lol, lol, lol, lol, lol, lol, lol, lol, lol]"]
+    for i in range(1, levels):
+        lines.append("a%d: &a%d [%s]" % (i, i, ", ".join(["*a%d" % (i - 1)] * fan_out)))
+    return "\n".join(lines + ["name: lol", "particles: *a%d" % (levels - 1)]) + "\n"
+
+
+def quadratic(string_len, aliases):
+    return ('s: &s "%s"\nname: q\nparticles: [%s]\n' %
+            ("x" * string_len, ", ".join(["*s"] * aliases)))
+
+
+def nested_lists(depth):
+    return "name: n\nparticles: " + "[" * depth + "]" * depth + "\n"
+
+
+def nested_maps(depth):
+    return "name: n\nshape: " + "{a: " * depth + "1" + "}" * depth + "\n"
+
+
+def particles_entry(count):
+    return ("name: many\nparticles:\n" +
+            "".join("  - {mass: 1.0, position: [%d.0, 0.5, -0.5]}\n" % (i % 100) for i in range(count)))
+
+
+TEXTS = {
+    "particles": ("name: t_handle\nparticles:\n"
+                  "  - {mass: 0.5, position: [0.0, -0.15, 0.0]}\n"
+                  "  - {mass: 0.5, position: [0.0, 0.15, 0.0]}\n"
+                  "  - {mass: 0.3, position: [0.12, 0.0, 0.0]}\n"
+                  "position: [-1.2, 0.0, 1.0]\nangular_velocity: [0.03, 6.0, 0.03]\n"),
+    "box": ("name: crate\nshape: box\nmass: 2.0\nsize: [0.3, 0.2, 0.1]\nresolution: 3\n"
+            "position: [1.2, 0.0, 1.0]\nangular_velocity: [0.3, 0.0, 2.5]\n"),
+    "sphere": ("{name: ball, shape: sphere, mass: 0.5, radius: 0.08, position: [0.0, -0.8, 1.0], "
+               "angular_velocity: [0.0, 0.0, 2.0]}"),
+    "cylinder": ("name: top\nshape: cylinder\nmass: 1.0\nradius: 0.2\nlength: 0.05\nresolution: 7\n"
+                 "orientation: [0.0, 0.2588190, 0.0, 0.9659258]\nlinear_velocity: [0.1, 0, 0]\n"),
+    "properties": ("name: damped\nshape: sphere\nmass: 1\nradius: 0.1\ngravity_scale: 0.5\n"
+                   "linear_damping: 0.1\nangular_damping: 2.0\n"),
+    "name_in_use": "{name: box, shape: box, mass: 1.0, size: [1, 1, 1]}",
+    "tags": ("name: !!str tagged\nshape: !!str sphere\nmass: !!float 1\nradius: !!int 1\n"
+             "position: !!seq [0, 0, 0]\n"),
+    # Texts built to cost memory or time, and the odd corners of YAML.
+    "billion_laughs": billion_laughs(),
+    "quadratic": quadratic(600, 90),
+    "nested_lists": nested_lists(500),
+    "nested_maps": nested_maps(200),
+    "merge_keys": ("base: &base {shape: box, mass: 1.0, size: [1, 1, 1]}\n"
+                   "name: merged\n<<: *base\nmore: &more {<<: [*base, *base], resolution: 2}\n"
+                   "<<: *more\n"),
+    "repeated_keys": ("name: a\nname: b\nshape: box\nshape: sphere\nmass: 1\nmass: -1\n"
+                      "radius: 1\nradius: 2\nsize: [1, 1, 1]\nname: [c]\n"),
+    "huge_numbers": ("name: big\nshape: sphere\nmass: 1e999999\nradius: 99999999999999999999\n"
+                     "resolution: 99999999999999999999\nposition: [1e308, -1e999999, 1e-999999]\n"
+                     "angular_velocity: [.inf, -.inf, .nan]\nlinear_velocity: [0x7fffffffffffffff, 0o777, 1_000]\n"),
+}
+
+LARGE_TEXTS = {
+    "particles-100000": particles_entry(100000),  # the most a body may have
+    "particles-100001": particles_entry(100001),
+    "quadratic-large": quadratic(65536, 32768),  # ~200 KB that aliases 2 GiB
+    "nested-lists-large": nested_lists(100000),
+}
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--large", metavar="DIR", help="write the large inputs into DIR")
+    args = parser.parse_args()
+    if args.large:
+        os.makedirs(args.large, exist_ok=True)
+        for name, text in LARGE_TEXTS.items():
+            with open(os.path.join(args.large, "service_text_fuzzer-" + name), "w") as f:
+                f.write(text)
+        return
+    texts = {name: text.encode() for name, text in TEXTS.items()}
+    for target, seeds in (("scene_parser_fuzzer", SCENES), ("wrench_fuzzer", WRENCHES),
+                          ("service_text_fuzzer", texts)):
+        d = os.path.join(HERE, "corpus", target)
+        os.makedirs(d, exist_ok=True)
+        for name, data in seeds.items():
+            assert len(data) <= 1024, (target, name, len(data))
+            with open(os.path.join(d, "seed_" + name), "wb") as f:
+                f.write(data)
+
+
+main()

@@ -4,8 +4,9 @@
 // ~set_body_state does: finite pose and twist, non-zero quaternion).
 //
 // The first bytes pick the integrator, dt, gravity, timeout, tf_prefix and
-// start stamp; the rest is a list of operations. After every operation
-// (abort otherwise):
+// start stamp; the rest is a list of operations. Stepping stops for the rest
+// of an input once it has cost kStepWork body-substeps (the other operations
+// go on). After every operation (abort otherwise):
 //   - every body state is finite with a unit quaternion (core/body_fault.h:
 //     the world freezes a body whose state would turn non-finite);
 //   - what the node publishes from it (ToPoseMsg, ToTwistMsg, ToBodyState,
@@ -137,7 +138,7 @@ void CheckWorld(const core::World& world, const char* after) {
   }
 }
 
-std::vector<core::BodyModel> Models() {
+std::vector<core::BodyModel> MakeModels() {
   std::vector<core::BodyModel> models;
   models.emplace_back("dot", std::vector<core::Particle>{{0.5, {1.0, 2.0, 3.0}}});
   models.emplace_back("rod", std::vector<core::Particle>{{1.0, {-0.5, 0.0, 0.0}}, {1.0, {0.5, 0.0, 0.0}}});
@@ -147,6 +148,16 @@ std::vector<core::BodyModel> Models() {
   models.emplace_back("top", core::MakeCylinder(1.0, 0.1, 0.02, 2));
   return models;
 }
+
+// The bodies and their initial states, the same for every input: built once
+// (LLVMFuzzerInitialize), copied into each input's world.
+std::vector<core::BodyModel> scene_models;
+std::vector<core::BodyState> scene_states;
+
+// The most stepping one input may do, in body-substeps (a step costs its
+// largest substep count times the bodies): stepping is nearly all of an
+// input's cost, and long runs mostly revisit the same code.
+constexpr std::uint64_t kStepWork = 1000;
 
 std::string BodyName(ByteReader* in, const Setup& setup) {
   static const char* const kNames[] = {"dot", "rod", "cube", "plate", "top"};
@@ -201,6 +212,16 @@ ros::Time Stamp(ByteReader* in, const Setup& setup, const core::World& world) {
 
 }  // namespace
 
+extern "C" int LLVMFuzzerInitialize(int*, char***) {
+  scene_models = MakeModels();
+  for (const core::BodyModel& m : scene_models) {
+    scene_states.push_back(core::StateFromTwist(m, Eigen::Vector3d(0.0, 0.0, 1.0),
+                                                Eigen::Quaterniond::Identity(),
+                                                Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0.0, 0.0, 0.5)));
+  }
+  return 0;
+}
+
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   ByteReader in(data, size);
   Setup setup;
@@ -227,14 +248,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   setup.start_stamp = ros::Time(kStarts[in.Byte() % 4], 123456789u);
   options.start_time_s = 0.0;
 
-  std::vector<core::BodyModel> models = Models();
-  std::vector<core::BodyState> initial;
-  for (const core::BodyModel& m : models) {
-    initial.push_back(core::StateFromTwist(m, Eigen::Vector3d(0.0, 0.0, 1.0),
-                                           Eigen::Quaterniond::Identity(), Eigen::Vector3d(0.1, 0, 0),
-                                           Eigen::Vector3d(0.0, 0.0, 0.5)));
-  }
-  core::World world(std::move(models), std::move(initial), options);
+  core::World world(scene_models, scene_states, options);
   if (Verbose()) {
     std::fprintf(stderr, "integrator %s dt %g gravity [%g %g %g] timeout %g tf_prefix '%s' start %u.%09u\n",
                  options.integrator.c_str(), options.dt_s, options.gravity.x(), options.gravity.y(),
@@ -252,6 +266,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   CheckWorld(world, "construction");
   int ops = 0;
+  std::uint64_t step_work = 0;
   while (!in.empty() && ops++ < 256) {
     const std::uint8_t op = in.Byte() % 8;
     if (op <= 3) {  // a ParticleWrench message
@@ -298,8 +313,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     } else if (op <= 5) {  // steps
       const int steps = 1 + in.Byte() % 16;
       if (Verbose()) std::fprintf(stderr, "step x%d from t = %g\n", steps, world.time());
-      for (int k = 0; k < steps; ++k) {
+      for (int k = 0; k < steps && step_work < kStepWork; ++k) {
         world.Step();
+        step_work += world.last_step_substeps_max() * world.size();
         CheckWorld(world, "Step");
       }
     } else if (op == 6) {
