@@ -80,7 +80,7 @@ printf '%s\n' "${sources[@]}" | xargs -P "$jobs" -I{} bash -c '
 objs=()
 for s in "${sources[@]}"; do objs+=("$out/obj/$(echo "$s" | tr / _).o"); done
 ros_libs=(-L/usr/lib/x86_64-linux-gnu -lroscpp -lxmlrpcpp -lrostime -lroscpp_serialization
-  -lrosconsole -lcpp_common -lboost_system -lyaml-cpp -lpthread)
+  -lrosconsole -lcpp_common -lboost_system -lyaml-cpp -lyaml -lpthread)
 for t in "${targets[@]}"; do
   "$cxx" "${cxxflags[@]}" -fsanitize=fuzzer "$repo/fuzz/$t.cpp" "${objs[@]}" "${ros_libs[@]}" -o "$out/$t"
 done
