@@ -1,8 +1,8 @@
 #include "rigid_body_sim/ros/imu_noise_params.h"
 
 #include <cmath>
-#include <cstdio>
 
+#include "rigid_body_sim/core/format_number.h"
 #include "rigid_body_sim/ros/scene_params.h"
 
 namespace rigid_body_sim {
@@ -15,11 +15,8 @@ std::string Describe(XmlRpcValue& value) {
   switch (value.getType()) {
     case XmlRpcValue::TypeInt:
       return std::to_string(static_cast<int>(value));
-    case XmlRpcValue::TypeDouble: {
-      char text[32];
-      std::snprintf(text, sizeof(text), "%g", static_cast<double>(value));
-      return text;
-    }
+    case XmlRpcValue::TypeDouble:
+      return core::FormatNumber(static_cast<double>(value));
     case XmlRpcValue::TypeString:
       return "'" + static_cast<std::string&>(value) + "'";
     case XmlRpcValue::TypeBoolean:

@@ -1,22 +1,15 @@
 #include "rigid_body_sim/ros/runtime_config.h"
 
 #include <cmath>
-#include <cstdio>
 #include <vector>
 
+#include "rigid_body_sim/core/format_number.h"
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/ros/log_thread.h"
 
 namespace rigid_body_sim {
-namespace {
 
-std::string FormatNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%g", value);
-  return text;
-}
-
-}  // namespace
+using core::FormatNumber;
 
 SimulationNodeConfig ToConfig(const NodeSettings& settings) {
   SimulationNodeConfig config = SimulationNodeConfig::__getDefault__();

@@ -3,11 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <cstdio>
 #include <set>
 
 #include <ros/names.h>
 
+#include "rigid_body_sim/core/format_number.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/ros/imu_noise_params.h"
@@ -15,6 +15,7 @@
 namespace rigid_body_sim {
 namespace {
 
+using core::FormatNumber;
 using XmlRpc::XmlRpcValue;
 
 constexpr int kDefaultShapeResolution = 5;
@@ -28,12 +29,6 @@ constexpr double kMaxShards = 1024;
 constexpr double kMaxSubstepsLimit = 1e6;
 // ~threads above this is a mistyped value, not a machine.
 constexpr double kMaxThreads = 256;
-
-std::string FormatNumber(double value) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%g", value);
-  return text;
-}
 
 // A parameter value as the user wrote it, for "got ..." in error messages.
 std::string Describe(const XmlRpcValue& value) {

@@ -19,24 +19,10 @@
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/step_record.h"
 #include "rigid_body_sim/core/thread_team.h"
+#include "rigid_body_sim/core/world_def.h"  // WorldDef, also spelt WorldOptions
 #include "rigid_body_sim/core/wrench_table.h"
 
 namespace rigid_body_sim::core {
-
-struct WorldOptions {
-  std::string integrator = kDefaultIntegrator;
-  double dt_s = 1e-3;
-  Eigen::Vector3d gravity = Eigen::Vector3d::Zero();  // [m/s²], at every COM
-  double wrench_timeout_s = 0.0;                      // 0: held until replaced
-  double start_time_s = 0.0;                          // t_0
-  // A body whose step leaves the scheme's accurate range takes up to this
-  // many substeps of dt/n instead; beyond it, it is frozen (kSpinAliased).
-  std::uint32_t max_substeps = 1000;
-  // Threads that step the bodies, >= 1 (the calling thread one of them): each
-  // takes contiguous blocks of them in turn. A body's step reads and writes
-  // that body alone, so the states are the same for any count.
-  std::size_t threads = 1;
-};
 
 // The angle [rad] a substep may turn through the parts of the motion that the
 // scheme or the kicks do not follow exactly (Integrator::RotationErrorRate,
