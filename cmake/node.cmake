@@ -8,6 +8,9 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(LIBYAML REQUIRED yaml-0.1)
 
 add_library(rigid_body_sim_ros
+  src/ros/param_values.cpp
+  src/ros/scene_settings.cpp
+  src/ros/scene_bodies.cpp
   src/ros/scene_params.cpp
   src/ros/conversions.cpp
   src/ros/body_outputs.cpp

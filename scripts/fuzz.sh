@@ -66,7 +66,8 @@ fi
 # The project's own code gets the coverage instrumentation; the sources are
 # the core's list in CMakeLists.txt plus the node files under test.
 mapfile -t sources < <(grep -oE 'src/core/[A-Za-z0-9_/]+\.cpp' "$repo/CMakeLists.txt")
-sources+=(src/ros/scene_params.cpp src/ros/imu_noise_params.cpp src/ros/conversions.cpp src/ros/wrench_intake.cpp
+sources+=(src/ros/scene_params.cpp src/ros/scene_settings.cpp src/ros/scene_bodies.cpp
+  src/ros/param_values.cpp src/ros/imu_noise_params.cpp src/ros/conversions.cpp src/ros/wrench_intake.cpp
   src/ros/log_thread.cpp src/ros/body_state_request.cpp src/ros/yaml_value.cpp)
 export repo out cxx core_flags_text="${core_flags[*]}"
 printf '%s\n' "${sources[@]}" | xargs -P "$jobs" -I{} bash -c '

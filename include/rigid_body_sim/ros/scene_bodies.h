@@ -1,0 +1,41 @@
+// The scene's `bodies` list (doc/node.md, "The scene"), and one entry of it as
+// ~spawn_body reads it: each entry a particle list or a generated shape.
+#pragma once
+
+#include <cstddef>
+#include <vector>
+
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_properties.h"
+#include "rigid_body_sim/core/body_state.h"
+
+namespace rigid_body_sim {
+
+// The bodies of a scene, in its order: one model, initial state and set of
+// properties each (the columns a core::World is built from).
+struct SceneBodies {
+  std::vector<core::BodyModel> models;
+  std::vector<core::BodyState> initial_states;
+  std::vector<core::BodyProperties> properties;
+};
+
+// The most bodies a scene, with the ones spawned later, may have: a bound
+// that keeps a mistyped or hostile scene from exhausting memory.
+constexpr std::size_t kMaxSceneBodies = 100000;
+// The most particles one body may have, for the same reason.
+constexpr int kMaxParticlesPerBody = 100000;
+
+// The `bodies` list alone, so that it can be checked without a master.
+// Throws SceneError. Unique names and initial states within
+// core::CheckState's bounds are checked by the core::World built from the
+// result.
+void ParseBodies(const XmlRpc::XmlRpcValue& bodies, SceneBodies* scene_bodies);
+
+// One entry of `bodies`, as it would be checked at index `index` of the
+// list, appended to `scene_bodies`. Throws SceneError ("bodies[i] (name
+// 'n'): ..."); appends nothing then.
+void ParseBodyEntry(const XmlRpc::XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies);
+
+}  // namespace rigid_body_sim

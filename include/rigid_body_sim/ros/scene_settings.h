@@ -1,0 +1,66 @@
+// The node's settings from its private parameters (doc/node.md,
+// "Parameters"), each checked as it is read.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <ros/node_handle.h>
+#include <Eigen/Core>
+
+#include "rigid_body_sim/core/imu_noise.h"
+#include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/world_def.h"
+
+namespace rigid_body_sim {
+
+// Lockstep with controllers that answer each published cycle on
+// ~lockstep_wrenches (doc/node.md, "Lockstep").
+struct LockstepSettings {
+  bool enabled = false;
+  std::vector<std::string> publishers;  // node names, resolved; not empty when enabled
+  double timeout_s = 1.0;               // wall time a cycle waits for answers, > 0
+  double startup_timeout_s = 30.0;      // wall time the start waits for the publishers, >= 0
+};
+
+// One of several nodes that share a scene (doc/node.md, "Shards"): it
+// simulates the bodies whose scene index i has i mod count = index.
+struct ShardSettings {
+  std::uint32_t count = 1;
+  std::uint32_t index = 0;
+};
+
+struct NodeSettings {
+  std::string world_frame = "world";
+  std::string tf_prefix;           // prepended as written to body names for TF
+  double rate_hz = 1000.0;         // integration rate, dt = 1 / rate
+  double publish_rate_hz = 100.0;  // output rate, <= rate
+  std::string integrator = core::kDefaultIntegrator;
+  Eigen::Vector3d gravity_mps2 = Eigen::Vector3d::Zero();
+  double wrench_timeout_s = 0.0;  // 0: a wrench is held until replaced
+  double real_time_factor = 1.0;  // 0: as fast as possible
+  bool publish_clock = false;
+  bool publish_tf = true;
+  // Each body's own topics (~<body>/pose, ...) advertised (extension): off
+  // spares the master 6 registrations per body in very large scenes.
+  bool per_body_topics = true;
+  core::ImuNoise imu_noise;                  // ~imu_*_stddev, ~imu_seed; exact by default
+  double particle_marker_diameter_m = 0.04;  // ~particles sphere size (extension)
+  double status_period_s = 1.0;              // the INFO status line's period, 0: never (extension)
+  // Most substeps of dt/n one body may take in a step (extension); the
+  // default bounds one body's worst step to a small share of a 1 kHz step
+  // in scenes of 10⁴ bodies.
+  std::uint32_t max_substeps = core::WorldDef{}.max_substeps;
+  // Threads that step the bodies in parallel blocks (extension).
+  std::size_t threads = core::WorldDef{}.threads;
+  LockstepSettings lockstep;
+  ShardSettings shard;
+};
+
+// Every private parameter of `private_nh` but the bodies and the IMU noise,
+// with their documented defaults. Throws SceneError naming the first bad
+// "~key" read.
+NodeSettings ReadSettings(const ros::NodeHandle& private_nh);
+
+}  // namespace rigid_body_sim

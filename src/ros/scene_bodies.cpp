@@ -1,0 +1,225 @@
+#include "rigid_body_sim/ros/scene_bodies.h"
+
+#include <algorithm>
+#include <cctype>
+#include <optional>
+#include <set>
+#include <string>
+
+#include "rigid_body_sim/core/kinematics.h"
+#include "rigid_body_sim/core/shapes.h"
+#include "rigid_body_sim/ros/param_values.h"
+#include "rigid_body_sim/ros/scene_error.h"
+
+namespace rigid_body_sim {
+namespace {
+
+using XmlRpc::XmlRpcValue;
+
+constexpr int kDefaultShapeResolution = 5;
+// A bound that keeps a mistyped or hostile scene from exhausting memory at
+// start (the scene is held in RAM, once per particle).
+constexpr int kMaxShapeResolution = 40;  // 64,000 cells
+constexpr std::size_t kMaxNameLength = 128;
+
+// A valid TF frame and ROS graph name (the body name is used in both).
+bool IsValidBodyName(const std::string& name) {
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+std::vector<core::Particle> ReadParticles(const XmlRpcValue& list) {
+  if (list.getType() != XmlRpcValue::TypeArray || list.size() == 0) {
+    throw SceneError("particles must be a non-empty list, got " + Describe(list));
+  }
+  if (list.size() > kMaxParticlesPerBody) {
+    throw SceneError("particles has " + std::to_string(list.size()) + " entries, at most " +
+                     std::to_string(kMaxParticlesPerBody) + " are allowed");
+  }
+  std::vector<core::Particle> particles;
+  for (int i = 0; i < list.size(); ++i) {
+    const std::string key = "particles[" + std::to_string(i) + "]";
+    const XmlRpcValue& entry = list[i];
+    if (entry.getType() != XmlRpcValue::TypeStruct) {
+      throw SceneError(key + " must be a map {mass, position}, got " + Describe(entry));
+    }
+    for (const auto& member : entry) {
+      if (member.first != "mass" && member.first != "position") {
+        throw SceneError(key + " has unknown key '" + member.first + "' (known: mass, position)");
+      }
+    }
+    if (!entry.hasMember("mass")) throw SceneError(key + ".mass is missing");
+    if (!entry.hasMember("position")) throw SceneError(key + ".position is missing");
+    core::Particle particle;
+    particle.mass_kg = ReadPositiveNumber(entry["mass"], key + ".mass");
+    particle.position_m = ReadFiniteVector<3>(entry["position"], key + ".position");
+    particles.push_back(particle);
+  }
+  return particles;
+}
+
+int ReadResolution(const XmlRpcValue& body) {
+  if (!body.hasMember("resolution")) return kDefaultShapeResolution;
+  const XmlRpcValue& value = body["resolution"];
+  if (value.getType() != XmlRpcValue::TypeInt || static_cast<int>(value) < 1 ||
+      static_cast<int>(value) > kMaxShapeResolution) {
+    throw SceneError("resolution must be an integer from 1 to " +
+                     std::to_string(kMaxShapeResolution) + ", got " + Describe(value));
+  }
+  return static_cast<int>(value);
+}
+
+double ReadRequiredPositive(const XmlRpcValue& body, const std::string& key) {
+  if (!body.hasMember(key)) throw SceneError(key + " is missing");
+  return ReadPositiveNumber(body[key], key);
+}
+
+// The keys each kind of entry accepts besides the common ones.
+std::set<std::string> ShapeKeys(const std::string& shape) {
+  if (shape == "box") return {"shape", "mass", "size", "resolution"};
+  if (shape == "sphere") return {"shape", "mass", "radius", "resolution"};
+  if (shape == "cylinder") return {"shape", "mass", "radius", "length", "resolution"};
+  throw SceneError("shape must be one of box, sphere, cylinder, got '" + shape + "'");
+}
+
+std::vector<core::Particle> ReadShape(const XmlRpcValue& body, const std::string& shape) {
+  const double mass = ReadRequiredPositive(body, "mass");
+  const int resolution = ReadResolution(body);
+  if (shape == "box") {
+    if (!body.hasMember("size")) throw SceneError("size is missing");
+    const Eigen::Vector3d size = ReadFiniteVector<3>(body["size"], "size");
+    if ((size.array() <= 0.0).any()) {
+      throw SceneError("size must be 3 numbers > 0, got " + Describe(body["size"]));
+    }
+    return core::MakeBox(mass, size, resolution);
+  }
+  const double radius = ReadRequiredPositive(body, "radius");
+  if (shape == "sphere") return core::MakeSphere(mass, radius, resolution);
+  return core::MakeCylinder(mass, radius, ReadRequiredPositive(body, "length"), resolution);
+}
+
+void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) {
+  static const std::set<std::string> kCommonKeys = {
+      "name",          "position",       "orientation",    "linear_velocity", "angular_velocity",
+      "gravity_scale", "linear_damping", "angular_damping"};
+  for (const auto& member : body) {
+    if (kCommonKeys.count(member.first) || kind_keys.count(member.first)) continue;
+    std::string known;
+    for (const auto& key : kCommonKeys) known += key + ", ";
+    for (const auto& key : kind_keys) known += key + ", ";
+    throw SceneError("unknown key '" + member.first +
+                     "' (known here: " + known.substr(0, known.size() - 2) + ")");
+  }
+}
+
+Eigen::Vector3d ReadOptionalVector3(const XmlRpcValue& body, const std::string& key) {
+  return body.hasMember(key) ? ReadFiniteVector<3>(body[key], key) : Eigen::Vector3d::Zero();
+}
+
+Eigen::Quaterniond ReadOrientation(const XmlRpcValue& body) {
+  if (!body.hasMember("orientation")) return Eigen::Quaterniond::Identity();
+  const Eigen::Vector4d xyzw = ReadFiniteVector<4>(body["orientation"], "orientation");
+  // Hand-written quaternions are rounded; any non-zero one is normalised.
+  const std::optional<Eigen::Quaterniond> unit =
+      core::ToUnitQuaternion(xyzw[0], xyzw[1], xyzw[2], xyzw[3]);
+  if (!unit) {
+    throw SceneError("orientation must be a non-zero quaternion [x, y, z, w], got " +
+                     Describe(body["orientation"]));
+  }
+  return *unit;
+}
+
+core::BodyProperties ReadProperties(const XmlRpcValue& body) {
+  core::BodyProperties properties;
+  if (body.hasMember("gravity_scale")) {
+    properties.gravity_scale = ReadFiniteNumber(body["gravity_scale"], "gravity_scale");
+  }
+  if (body.hasMember("linear_damping")) {
+    properties.linear_damping_per_s = ReadFiniteNumber(body["linear_damping"], "linear_damping");
+  }
+  if (body.hasMember("angular_damping")) {
+    properties.angular_damping_per_s = ReadFiniteNumber(body["angular_damping"], "angular_damping");
+  }
+  const std::string error = core::PropertiesError(properties);
+  if (!error.empty()) throw SceneError(error);
+  return properties;
+}
+
+// One entry of `bodies`; errors name the key, the caller adds the entry.
+void ParseBody(const XmlRpcValue& body, SceneBodies* scene_bodies) {
+  const std::string& name = body["name"];
+  const bool has_particles = body.hasMember("particles");
+  const bool has_shape = body.hasMember("shape");
+  if (has_particles == has_shape) {
+    throw SceneError("needs exactly one of particles (a list) or shape (box, sphere, cylinder)");
+  }
+  std::vector<core::Particle> particles;
+  if (has_particles) {
+    CheckKeys(body, {"particles"});
+    particles = ReadParticles(body["particles"]);
+  } else {
+    const XmlRpcValue& shape = body["shape"];
+    if (shape.getType() != XmlRpcValue::TypeString) {
+      throw SceneError("shape must be one of box, sphere, cylinder, got " + Describe(shape));
+    }
+    CheckKeys(body, ShapeKeys(shape));
+    particles = ReadShape(body, shape);
+  }
+  const Eigen::Vector3d position = ReadOptionalVector3(body, "position");
+  const Eigen::Quaterniond orientation = ReadOrientation(body);
+  const Eigen::Vector3d linear_velocity = ReadOptionalVector3(body, "linear_velocity");
+  const Eigen::Vector3d angular_velocity = ReadOptionalVector3(body, "angular_velocity");
+  const core::BodyProperties properties = ReadProperties(body);
+
+  core::BodyModel model(name, std::move(particles));
+  // Unique names and a state within CheckState's bounds are the World's to check.
+  scene_bodies->initial_states.push_back(
+      core::StateFromTwist(model, position, orientation, linear_velocity, angular_velocity));
+  scene_bodies->models.push_back(std::move(model));
+  scene_bodies->properties.push_back(properties);
+}
+
+}  // namespace
+
+void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies) {
+  std::string entry = "bodies[" + std::to_string(index) + "]";
+  if (body.getType() != XmlRpcValue::TypeStruct) {
+    throw SceneError(entry + ": must be a map with a name and particles or a shape, got " +
+                     Describe(body));
+  }
+  if (!body.hasMember("name")) throw SceneError(entry + ": name is missing");
+  const XmlRpcValue& name = body["name"];
+  if (name.getType() != XmlRpcValue::TypeString || static_cast<const std::string&>(name).empty()) {
+    throw SceneError(entry + ": name must be a non-empty string, got " + Describe(name));
+  }
+  entry += " (name '" + static_cast<const std::string&>(name) + "')";
+  if (static_cast<const std::string&>(name).size() > kMaxNameLength) {
+    throw SceneError(entry + ": name is longer than " + std::to_string(kMaxNameLength) +
+                     " characters");
+  }
+  if (!IsValidBodyName(name)) {
+    throw SceneError(entry +
+                     ": name must be a letter then letters, digits or '_' "
+                     "(it names a TF frame and topics)");
+  }
+  try {
+    ParseBody(body, scene_bodies);
+  } catch (const std::exception& error) {  // SceneError, or the core's std::invalid_argument
+    throw SceneError(entry + ": " + error.what());
+  }
+}
+
+void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies) {
+  if (bodies.getType() != XmlRpcValue::TypeArray || bodies.size() == 0) {
+    throw SceneError("~bodies must be a non-empty list of bodies, got " + Describe(bodies));
+  }
+  if (static_cast<std::size_t>(bodies.size()) > kMaxSceneBodies) {
+    throw SceneError("~bodies has " + std::to_string(bodies.size()) + " entries, at most " +
+                     std::to_string(kMaxSceneBodies) + " are allowed");
+  }
+  for (int i = 0; i < bodies.size(); ++i) ParseBodyEntry(bodies[i], i, scene_bodies);
+}
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,184 @@
+#include "rigid_body_sim/ros/scene_settings.h"
+
+#include <cmath>
+
+#include <ros/names.h>
+
+#include "rigid_body_sim/core/format_number.h"
+#include "rigid_body_sim/ros/param_values.h"
+#include "rigid_body_sim/ros/scene_error.h"
+
+namespace rigid_body_sim {
+namespace {
+
+using core::FormatNumber;
+using XmlRpc::XmlRpcValue;
+
+// More shards than this would be more processes than any one scene needs.
+constexpr double kMaxShards = 1024;
+// ~max_substeps above this would let one body stall the loop for seconds.
+constexpr double kMaxSubstepsLimit = 1e6;
+// ~threads above this is a mistyped value, not a machine.
+constexpr double kMaxThreads = 256;
+
+// Private parameters, each with its documented default; errors name "~key".
+class ParamReader {
+ public:
+  explicit ParamReader(const ros::NodeHandle& nh) : nh_(nh) {}
+
+  bool Get(const std::string& key, XmlRpcValue* value) const { return nh_.getParam(key, *value); }
+
+  double Number(const std::string& key, double fallback) const {
+    XmlRpcValue value;
+    return Get(key, &value) ? ReadFiniteNumber(value, "~" + key) : fallback;
+  }
+
+  std::string String(const std::string& key, const std::string& fallback) const {
+    XmlRpcValue value;
+    if (!Get(key, &value)) return fallback;
+    if (value.getType() != XmlRpcValue::TypeString) {
+      throw SceneError("~" + key + " must be a string, got " + Describe(value));
+    }
+    return value;
+  }
+
+  bool Bool(const std::string& key, bool fallback) const {
+    XmlRpcValue value;
+    if (!Get(key, &value)) return fallback;
+    if (value.getType() != XmlRpcValue::TypeBoolean) {
+      throw SceneError("~" + key + " must be true or false, got " + Describe(value));
+    }
+    return value;
+  }
+
+  Eigen::Vector3d Vector3(const std::string& key, const Eigen::Vector3d& fallback) const {
+    XmlRpcValue value;
+    return Get(key, &value) ? ReadFiniteVector<3>(value, "~" + key) : fallback;
+  }
+
+  std::vector<std::string> StringList(const std::string& key) const {
+    XmlRpcValue value;
+    if (!Get(key, &value)) return {};
+    if (value.getType() != XmlRpcValue::TypeArray) {
+      throw SceneError("~" + key + " must be a list of strings, got " + Describe(value));
+    }
+    std::vector<std::string> strings;
+    for (int i = 0; i < value.size(); ++i) {
+      if (value[i].getType() != XmlRpcValue::TypeString ||
+          static_cast<std::string>(value[i]).empty()) {
+        throw SceneError("~" + key + "[" + std::to_string(i) +
+                         "] must be a non-empty string, got " + Describe(value[i]));
+      }
+      strings.push_back(value[i]);
+    }
+    return strings;
+  }
+
+ private:
+  const ros::NodeHandle& nh_;
+};
+
+LockstepSettings ReadLockstep(const ParamReader& params) {
+  LockstepSettings lockstep;
+  lockstep.enabled = params.Bool("lockstep", lockstep.enabled);
+  for (const std::string& name : params.StringList("lockstep_publishers")) {
+    std::string error;
+    if (!ros::names::validate(name, error)) {
+      throw SceneError("~lockstep_publishers: '" + name + "' is not a node name: " + error);
+    }
+    lockstep.publishers.push_back(ros::names::resolve(name));
+  }
+  if (lockstep.enabled && lockstep.publishers.empty()) {
+    throw SceneError(
+        "~lockstep_publishers must list the controllers' node names when ~lockstep is true");
+  }
+  lockstep.timeout_s = params.Number("lockstep_timeout", lockstep.timeout_s);
+  if (lockstep.timeout_s <= 0.0) {
+    throw SceneError("~lockstep_timeout must be > 0, got " + FormatNumber(lockstep.timeout_s));
+  }
+  lockstep.startup_timeout_s =
+      params.Number("lockstep_startup_timeout", lockstep.startup_timeout_s);
+  if (lockstep.startup_timeout_s < 0.0) {
+    throw SceneError("~lockstep_startup_timeout must be >= 0, got " +
+                     FormatNumber(lockstep.startup_timeout_s));
+  }
+  return lockstep;
+}
+
+ShardSettings ReadShard(const ParamReader& params) {
+  const double count = params.Number("shard_count", 1.0);
+  if (count < 1.0 || count > kMaxShards || count != std::floor(count)) {
+    throw SceneError("~shard_count must be a whole number from 1 to " + FormatNumber(kMaxShards) +
+                     ", got " + FormatNumber(count));
+  }
+  const double index = params.Number("shard_index", 0.0);
+  if (index < 0.0 || index >= count || index != std::floor(index)) {
+    throw SceneError("~shard_index must be a whole number from 0 to ~shard_count - 1 = " +
+                     FormatNumber(count - 1.0) + ", got " + FormatNumber(index));
+  }
+  return ShardSettings{static_cast<std::uint32_t>(count), static_cast<std::uint32_t>(index)};
+}
+
+}  // namespace
+
+NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
+  const ParamReader params(private_nh);
+  NodeSettings settings;
+  settings.world_frame = params.String("world_frame", settings.world_frame);
+  if (settings.world_frame.empty()) throw SceneError("~world_frame must not be empty");
+  settings.tf_prefix = params.String("tf_prefix", settings.tf_prefix);
+  settings.rate_hz = params.Number("rate", settings.rate_hz);
+  if (settings.rate_hz <= 0.0 || settings.rate_hz > 1e9) {
+    throw SceneError("~rate must be > 0 and at most 1e9, got " + FormatNumber(settings.rate_hz));
+  }
+  settings.publish_rate_hz = params.Number("publish_rate", settings.publish_rate_hz);
+  if (settings.publish_rate_hz <= 0.0) {
+    throw SceneError("~publish_rate must be > 0, got " + FormatNumber(settings.publish_rate_hz));
+  }
+  if (settings.publish_rate_hz > settings.rate_hz) {
+    throw SceneError("~publish_rate must not exceed ~rate (" + FormatNumber(settings.rate_hz) +
+                     "), got " + FormatNumber(settings.publish_rate_hz));
+  }
+  settings.integrator = params.String("integrator", settings.integrator);
+  if (core::FindIntegrator(settings.integrator) == nullptr) {
+    throw SceneError("~integrator: " + core::UnknownIntegratorMessage(settings.integrator));
+  }
+  settings.gravity_mps2 = params.Vector3("gravity", settings.gravity_mps2);
+  settings.wrench_timeout_s = params.Number("wrench_timeout", settings.wrench_timeout_s);
+  if (settings.wrench_timeout_s < 0.0) {
+    throw SceneError("~wrench_timeout must be >= 0, got " +
+                     FormatNumber(settings.wrench_timeout_s));
+  }
+  settings.real_time_factor = params.Number("real_time_factor", settings.real_time_factor);
+  if (settings.real_time_factor < 0.0) {
+    throw SceneError("~real_time_factor must be >= 0, got " +
+                     FormatNumber(settings.real_time_factor));
+  }
+  settings.publish_clock = params.Bool("publish_clock", settings.publish_clock);
+  settings.publish_tf = params.Bool("publish_tf", settings.publish_tf);
+  settings.per_body_topics = params.Bool("per_body_topics", settings.per_body_topics);
+  settings.particle_marker_diameter_m =
+      params.Number("particle_marker_diameter", settings.particle_marker_diameter_m);
+  settings.status_period_s = params.Number("status_period", settings.status_period_s);
+  if (settings.status_period_s < 0.0) {
+    throw SceneError("~status_period must be >= 0, got " + FormatNumber(settings.status_period_s));
+  }
+  const double max_substeps = params.Number("max_substeps", settings.max_substeps);
+  if (max_substeps < 1.0 || max_substeps > kMaxSubstepsLimit ||
+      max_substeps != std::floor(max_substeps)) {
+    throw SceneError("~max_substeps must be a whole number from 1 to " +
+                     FormatNumber(kMaxSubstepsLimit) + ", got " + FormatNumber(max_substeps));
+  }
+  settings.max_substeps = static_cast<std::uint32_t>(max_substeps);
+  const double threads = params.Number("threads", static_cast<double>(settings.threads));
+  if (threads < 1.0 || threads > kMaxThreads || threads != std::floor(threads)) {
+    throw SceneError("~threads must be a whole number from 1 to " + FormatNumber(kMaxThreads) +
+                     ", got " + FormatNumber(threads));
+  }
+  settings.threads = static_cast<std::size_t>(threads);
+  settings.lockstep = ReadLockstep(params);
+  settings.shard = ReadShard(params);
+  return settings;
+}
+
+}  // namespace rigid_body_sim
