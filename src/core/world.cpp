@@ -5,7 +5,9 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "rigid_body_sim/core/check.h"
 #include "rigid_body_sim/core/kinematics.h"
+#include "rigid_body_sim/core/validate.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -38,10 +40,6 @@ std::vector<std::size_t> ParticleCounts(const std::vector<BodyModel>& models) {
   return counts;
 }
 
-std::string Entry(std::size_t index, const std::string& name) {
-  return "bodies[" + std::to_string(index) + "] (name '" + name + "')";
-}
-
 }  // namespace
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
@@ -58,8 +56,7 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
       loaded_(models_.size(), 0),
       faults_(models_.size(), BodyFault::kNone),
       one_step_momentum_sq_(models_.size(), 0.0) {
-  if (!(options_.dt_s > 0.0)) throw std::invalid_argument("dt must be > 0");
-  if (options_.threads < 1) throw std::invalid_argument("threads must be >= 1");
+  CheckWorldDef(options_);
   if (states_.size() != models_.size() || properties_.size() != models_.size()) {
     throw std::invalid_argument("one initial state and one set of properties per body is required");
   }
@@ -80,21 +77,12 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
 }
 
 void World::CheckBody(std::size_t i) const {
-  const std::string& name = models_[i].name();
-  if (name.empty()) throw std::invalid_argument(Entry(i, name) + ": name must not be empty");
-  const auto first = body_index_.find(name);
-  if (first != body_index_.end() && first->second != i) {
-    throw std::invalid_argument(Entry(i, name) + ": name duplicates bodies[" +
-                                std::to_string(first->second) + "]");
-  }
-  const std::string properties_error = PropertiesError(properties_[i]);
-  if (!properties_error.empty())
-    throw std::invalid_argument(Entry(i, name) + ": " + properties_error);
-  BodyFault fault = CheckState(models_[i], states_[i]);
-  if (fault == BodyFault::kNone && SubstepsFor(i, states_[i]) == 0) fault = BodyFault::kSpinAliased;
-  if (fault != BodyFault::kNone) {
-    throw std::invalid_argument(Entry(i, name) + ": initial state is " + ToString(fault));
-  }
+  const auto first = body_index_.find(models_[i].name());
+  std::optional<std::size_t> name_owner;
+  if (first != body_index_.end()) name_owner = first->second;
+  CheckBodyDef(BodyDef{models_[i], states_[i], properties_[i]}, i, options_, *integrator_,
+               name_owner);
+  RBS_DCHECK(SubstepsFor(i, states_[i]) != 0);  // the validator's count is SubstepsFor's
 }
 
 void World::PrepareBody(std::size_t i) {
@@ -365,16 +353,14 @@ void World::SetBodyState(std::size_t body, const BodyState& state) {
 }
 
 void World::SetGravity(const Eigen::Vector3d& gravity_mps2) {
-  if (!gravity_mps2.allFinite()) throw std::invalid_argument("gravity must be finite");
+  CheckGravity(gravity_mps2, KeyNaming::kWorld);
   options_.gravity = gravity_mps2;
   has_gravity_ = !gravity_mps2.isZero(0.0);
   wrenches_.MarkLoadsStale();  // gravity is summed into the loads with the wrenches
 }
 
 void World::SetWrenchTimeout(double timeout_s) {
-  if (!(timeout_s >= 0.0) || !std::isfinite(timeout_s)) {
-    throw std::invalid_argument("wrench timeout must be finite and >= 0");
-  }
+  CheckWrenchTimeout(timeout_s, KeyNaming::kWorld);
   options_.wrench_timeout_s = timeout_s;  // WrenchTable::Reduce sees the change
 }
 

@@ -1,13 +1,13 @@
 #include "rigid_body_sim/ros/scene_bodies.h"
 
-#include <algorithm>
-#include <cctype>
 #include <optional>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
+#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
 
@@ -20,15 +20,6 @@ constexpr int kDefaultShapeResolution = 5;
 // A bound that keeps a mistyped or hostile scene from exhausting memory at
 // start (the scene is held in RAM, once per particle).
 constexpr int kMaxShapeResolution = 40;  // 64,000 cells
-constexpr std::size_t kMaxNameLength = 128;
-
-// A valid TF frame and ROS graph name (the body name is used in both).
-bool IsValidBodyName(const std::string& name) {
-  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
-  return std::all_of(name.begin(), name.end(), [](char c) {
-    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
-  });
-}
 
 std::vector<core::Particle> ReadParticles(const XmlRpcValue& list) {
   if (list.getType() != XmlRpcValue::TypeArray || list.size() == 0) {
@@ -142,13 +133,12 @@ core::BodyProperties ReadProperties(const XmlRpcValue& body) {
   if (body.hasMember("angular_damping")) {
     properties.angular_damping_per_s = ReadFiniteNumber(body["angular_damping"], "angular_damping");
   }
-  const std::string error = core::PropertiesError(properties);
-  if (!error.empty()) throw SceneError(error);
+  core::CheckBodyProperties(properties);
   return properties;
 }
 
 // One entry of `bodies`; errors name the key, the caller adds the entry.
-void ParseBody(const XmlRpcValue& body, SceneBodies* scene_bodies) {
+core::BodyDef ReadBody(const XmlRpcValue& body) {
   const std::string& name = body["name"];
   const bool has_particles = body.hasMember("particles");
   const bool has_shape = body.hasMember("shape");
@@ -174,11 +164,10 @@ void ParseBody(const XmlRpcValue& body, SceneBodies* scene_bodies) {
   const core::BodyProperties properties = ReadProperties(body);
 
   core::BodyModel model(name, std::move(particles));
-  // Unique names and a state within CheckState's bounds are the World's to check.
-  scene_bodies->initial_states.push_back(
-      core::StateFromTwist(model, position, orientation, linear_velocity, angular_velocity));
-  scene_bodies->models.push_back(std::move(model));
-  scene_bodies->properties.push_back(properties);
+  // Unique names and a state the world's step can take are the World's to check.
+  const core::BodyState initial_state =
+      core::StateFromTwist(model, position, orientation, linear_velocity, angular_velocity);
+  return core::BodyDef{std::move(model), initial_state, properties};
 }
 
 }  // namespace
@@ -194,18 +183,17 @@ void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* sce
   if (name.getType() != XmlRpcValue::TypeString || static_cast<const std::string&>(name).empty()) {
     throw SceneError(entry + ": name must be a non-empty string, got " + Describe(name));
   }
-  entry += " (name '" + static_cast<const std::string&>(name) + "')";
-  if (static_cast<const std::string&>(name).size() > kMaxNameLength) {
-    throw SceneError(entry + ": name is longer than " + std::to_string(kMaxNameLength) +
-                     " characters");
-  }
-  if (!IsValidBodyName(name)) {
-    throw SceneError(entry +
-                     ": name must be a letter then letters, digits or '_' "
-                     "(it names a TF frame and topics)");
-  }
   try {
-    ParseBody(body, scene_bodies);
+    core::CheckBodyName(static_cast<const std::string&>(name), index);  // names the entry
+  } catch (const std::invalid_argument& error) {
+    throw SceneError(error.what());
+  }
+  entry += " (name '" + static_cast<const std::string&>(name) + "')";
+  try {
+    core::BodyDef def = ReadBody(body);
+    scene_bodies->models.push_back(std::move(def.model));
+    scene_bodies->initial_states.push_back(def.initial_state);
+    scene_bodies->properties.push_back(def.properties);
   } catch (const std::exception& error) {  // SceneError, or the core's std::invalid_argument
     throw SceneError(entry + ": " + error.what());
   }
@@ -220,6 +208,16 @@ void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies) {
                      std::to_string(kMaxSceneBodies) + " are allowed");
   }
   for (int i = 0; i < bodies.size(); ++i) ParseBodyEntry(bodies[i], i, scene_bodies);
+}
+
+std::vector<core::BodyDef> BodyDefs(const SceneBodies& scene_bodies) {
+  std::vector<core::BodyDef> defs;
+  defs.reserve(scene_bodies.models.size());
+  for (std::size_t i = 0; i < scene_bodies.models.size(); ++i) {
+    defs.push_back(core::BodyDef{scene_bodies.models[i], scene_bodies.initial_states[i],
+                                 scene_bodies.properties[i]});
+  }
+  return defs;
 }
 
 }  // namespace rigid_body_sim

@@ -1,6 +1,6 @@
 #include "rigid_body_sim/ros/scene_params.h"
 
-#include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/imu_noise_params.h"
 
 namespace rigid_body_sim {
@@ -15,9 +15,9 @@ Scene LoadScene(const ros::NodeHandle& private_nh) {
   }
   ParseBodies(bodies, &scene.bodies);
   if (scene.settings.shard.count > 1) {
-    // Every shard checks the whole scene (names, states), with its indices.
-    const core::World whole(scene.bodies.models, scene.bodies.initial_states, core::WorldOptions(),
-                            scene.bodies.properties);
+    // Every shard checks the whole scene (names, states), with its indices,
+    // as a World of the default WorldDef would.
+    core::CheckBodyDefs(BodyDefs(scene.bodies), core::WorldDef());
     KeepShard(scene.settings.shard, &scene);
   }
   return scene;

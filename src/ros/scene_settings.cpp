@@ -1,10 +1,12 @@
 #include "rigid_body_sim/ros/scene_settings.h"
 
 #include <cmath>
+#include <stdexcept>
 
 #include <ros/names.h>
 
 #include "rigid_body_sim/core/format_number.h"
+#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
 
@@ -12,6 +14,7 @@ namespace rigid_body_sim {
 namespace {
 
 using core::FormatNumber;
+using core::KeyNaming;
 using XmlRpc::XmlRpcValue;
 
 // More shards than this would be more processes than any one scene needs.
@@ -20,6 +23,16 @@ constexpr double kMaxShards = 1024;
 constexpr double kMaxSubstepsLimit = 1e6;
 // ~threads above this is a mistyped value, not a machine.
 constexpr double kMaxThreads = 256;
+
+// The validator's check of a value read, as the scene's error.
+template <typename Check>
+void AsSceneError(Check check) {
+  try {
+    check();
+  } catch (const std::invalid_argument& error) {
+    throw SceneError(error.what());
+  }
+}
 
 // Private parameters, each with its documented default; errors name "~key".
 class ParamReader {
@@ -119,6 +132,17 @@ ShardSettings ReadShard(const ParamReader& params) {
   return ShardSettings{static_cast<std::uint32_t>(count), static_cast<std::uint32_t>(index)};
 }
 
+// A whole number from 1 to `max` as a double (the parameter server's numbers),
+// before it is cast.
+double ReadCount(const ParamReader& params, const std::string& key, double fallback, double max) {
+  const double count = params.Number(key, fallback);
+  if (count < 1.0 || count > max || count != std::floor(count)) {
+    throw SceneError("~" + key + " must be a whole number from 1 to " + FormatNumber(max) +
+                     ", got " + FormatNumber(count));
+  }
+  return count;
+}
+
 }  // namespace
 
 NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
@@ -131,29 +155,19 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   if (settings.rate_hz <= 0.0 || settings.rate_hz > 1e9) {
     throw SceneError("~rate must be > 0 and at most 1e9, got " + FormatNumber(settings.rate_hz));
   }
+  // The runtime keys, by the checks the runtime configuration makes too.
   settings.publish_rate_hz = params.Number("publish_rate", settings.publish_rate_hz);
-  if (settings.publish_rate_hz <= 0.0) {
-    throw SceneError("~publish_rate must be > 0, got " + FormatNumber(settings.publish_rate_hz));
-  }
-  if (settings.publish_rate_hz > settings.rate_hz) {
-    throw SceneError("~publish_rate must not exceed ~rate (" + FormatNumber(settings.rate_hz) +
-                     "), got " + FormatNumber(settings.publish_rate_hz));
-  }
+  AsSceneError([&] {
+    core::CheckPublishRate(settings.publish_rate_hz, settings.rate_hz, KeyNaming::kParameter);
+  });
   settings.integrator = params.String("integrator", settings.integrator);
-  if (core::FindIntegrator(settings.integrator) == nullptr) {
-    throw SceneError("~integrator: " + core::UnknownIntegratorMessage(settings.integrator));
-  }
-  settings.gravity_mps2 = params.Vector3("gravity", settings.gravity_mps2);
+  AsSceneError([&] { core::CheckIntegratorName(settings.integrator, KeyNaming::kParameter); });
+  settings.gravity_mps2 = params.Vector3("gravity", settings.gravity_mps2);  // finite once read
   settings.wrench_timeout_s = params.Number("wrench_timeout", settings.wrench_timeout_s);
-  if (settings.wrench_timeout_s < 0.0) {
-    throw SceneError("~wrench_timeout must be >= 0, got " +
-                     FormatNumber(settings.wrench_timeout_s));
-  }
+  AsSceneError([&] { core::CheckWrenchTimeout(settings.wrench_timeout_s, KeyNaming::kParameter); });
   settings.real_time_factor = params.Number("real_time_factor", settings.real_time_factor);
-  if (settings.real_time_factor < 0.0) {
-    throw SceneError("~real_time_factor must be >= 0, got " +
-                     FormatNumber(settings.real_time_factor));
-  }
+  AsSceneError(
+      [&] { core::CheckRealTimeFactor(settings.real_time_factor, KeyNaming::kParameter); });
   settings.publish_clock = params.Bool("publish_clock", settings.publish_clock);
   settings.publish_tf = params.Bool("publish_tf", settings.publish_tf);
   settings.per_body_topics = params.Bool("per_body_topics", settings.per_body_topics);
@@ -163,19 +177,10 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   if (settings.status_period_s < 0.0) {
     throw SceneError("~status_period must be >= 0, got " + FormatNumber(settings.status_period_s));
   }
-  const double max_substeps = params.Number("max_substeps", settings.max_substeps);
-  if (max_substeps < 1.0 || max_substeps > kMaxSubstepsLimit ||
-      max_substeps != std::floor(max_substeps)) {
-    throw SceneError("~max_substeps must be a whole number from 1 to " +
-                     FormatNumber(kMaxSubstepsLimit) + ", got " + FormatNumber(max_substeps));
-  }
-  settings.max_substeps = static_cast<std::uint32_t>(max_substeps);
-  const double threads = params.Number("threads", static_cast<double>(settings.threads));
-  if (threads < 1.0 || threads > kMaxThreads || threads != std::floor(threads)) {
-    throw SceneError("~threads must be a whole number from 1 to " + FormatNumber(kMaxThreads) +
-                     ", got " + FormatNumber(threads));
-  }
-  settings.threads = static_cast<std::size_t>(threads);
+  settings.max_substeps = static_cast<std::uint32_t>(
+      ReadCount(params, "max_substeps", settings.max_substeps, kMaxSubstepsLimit));
+  settings.threads = static_cast<std::size_t>(
+      ReadCount(params, "threads", static_cast<double>(settings.threads), kMaxThreads));
   settings.lockstep = ReadLockstep(params);
   settings.shard = ReadShard(params);
   return settings;

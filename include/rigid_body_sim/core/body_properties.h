@@ -3,10 +3,9 @@
 // fast its momenta decay.
 #pragma once
 
-#include <string>
-
 namespace rigid_body_sim::core {
 
+// Checked by CheckBodyProperties (validate.h).
 struct BodyProperties {
   double gravity_scale = 1.0;          // multiplies the world's gravity; 0: the body floats
   double linear_damping_per_s = 0.0;   // c >= 0 in ṗ = F − c p
@@ -14,9 +13,5 @@ struct BodyProperties {
 
   bool has_damping() const { return linear_damping_per_s > 0.0 || angular_damping_per_s > 0.0; }
 };
-
-// Why `properties` cannot be simulated ("linear_damping must be >= 0, got
-// -1"), or "" when it can. Names the scene's keys.
-std::string PropertiesError(const BodyProperties& properties);
 
 }  // namespace rigid_body_sim::core

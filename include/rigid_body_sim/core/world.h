@@ -31,13 +31,11 @@ constexpr double kMaxSubstepAngle = 0.04;
 
 class World {
  public:
-  // Throws std::invalid_argument on an unknown integrator, dt <= 0, threads
-  // < 1, duplicate
-  // or empty body names, a states/models (or non-empty properties) size
-  // mismatch, an initial state that CheckState rejects, or properties that
-  // PropertiesError rejects, each named as "bodies[i] (name 'n'): ...".
-  // These are the scene's only checks of names and initial states. Empty
-  // `properties` gives every body the defaults.
+  // Throws std::invalid_argument on `options` that CheckWorldDef rejects
+  // (validate.h: the setters' checks among them), a states/models (or
+  // non-empty properties) size mismatch, or a body that CheckBodyDef rejects
+  // ("bodies[i] (name 'n'): ..."). Empty `properties` gives every body the
+  // defaults.
   World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
         const WorldOptions& options, std::vector<BodyProperties> properties = {});
 

@@ -7,6 +7,7 @@
 
 #include <xmlrpcpp/XmlRpcValue.h>
 
+#include "rigid_body_sim/core/body_def.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_properties.h"
 #include "rigid_body_sim/core/body_state.h"
@@ -28,14 +29,18 @@ constexpr std::size_t kMaxSceneBodies = 100000;
 constexpr int kMaxParticlesPerBody = 100000;
 
 // The `bodies` list alone, so that it can be checked without a master.
-// Throws SceneError. Unique names and initial states within
-// core::CheckState's bounds are checked by the core::World built from the
-// result.
+// Throws SceneError. Unique names and initial states (core::CheckBodyDef with
+// the world's step) are checked by the core::World built from the result, or
+// core::CheckBodyDefs.
 void ParseBodies(const XmlRpc::XmlRpcValue& bodies, SceneBodies* scene_bodies);
 
 // One entry of `bodies`, as it would be checked at index `index` of the
 // list, appended to `scene_bodies`. Throws SceneError ("bodies[i] (name
 // 'n'): ..."); appends nothing then.
 void ParseBodyEntry(const XmlRpc::XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies);
+
+// The bodies as the core's definitions, in order (copies share the models'
+// particles).
+std::vector<core::BodyDef> BodyDefs(const SceneBodies& scene_bodies);
 
 }  // namespace rigid_body_sim

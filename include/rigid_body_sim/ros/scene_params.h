@@ -23,8 +23,9 @@ struct Scene {
 };
 
 // Reads every private parameter of `private_nh`, with their documented defaults,
-// and keeps this shard's bodies once the whole scene is checked (by a
-// core::World built from it: std::invalid_argument). Throws SceneError.
+// and keeps this shard's bodies once the whole scene is checked (by
+// core::CheckBodyDefs, as a core::World would). Throws SceneError, or
+// std::invalid_argument from the core's checks of the whole scene.
 Scene LoadScene(const ros::NodeHandle& private_nh);
 
 // Keeps the bodies of `scene` that shard `shard` simulates and records the

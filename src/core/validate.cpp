@@ -1,0 +1,186 @@
+#include "rigid_body_sim/core/validate.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <memory>
+#include <unordered_map>
+
+#include "rigid_body_sim/core/body_fault.h"
+#include "rigid_body_sim/core/check.h"
+#include "rigid_body_sim/core/format_number.h"
+#include "rigid_body_sim/core/world.h"
+
+namespace rigid_body_sim::core {
+namespace {
+
+// World::SubstepsFor's bound on every rate it weighs: ∛2·|L|·max_k(1/λ_k).
+const double kRateBoundFactor = std::cbrt(2.0);
+
+std::string Entry(std::size_t index, const std::string& name) {
+  return "bodies[" + std::to_string(index) + "] (name '" + name + "')";
+}
+
+// A valid TF frame and ROS graph name.
+bool IsValidBodyName(const std::string& name) {
+  if (name.empty() || !std::isalpha(static_cast<unsigned char>(name[0]))) return false;
+  return std::all_of(name.begin(), name.end(), [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  });
+}
+
+// Why `properties` cannot be simulated, or "".
+std::string PropertiesError(const BodyProperties& properties) {
+  if (!std::isfinite(properties.gravity_scale)) {
+    return "gravity_scale must be a finite number, got " + FormatNumber(properties.gravity_scale);
+  }
+  const auto damping_error = [](const char* key, double value) -> std::string {
+    if (std::isfinite(value) && value >= 0.0) return "";
+    return std::string(key) + " must be a finite number >= 0 [1/s], got " + FormatNumber(value);
+  };
+  std::string error = damping_error("linear_damping", properties.linear_damping_per_s);
+  if (error.empty()) error = damping_error("angular_damping", properties.angular_damping_per_s);
+  return error;
+}
+
+// Whether a body that holds no wrench can step from `state` within
+// world.max_substeps: World::SubstepsFor without a load, written out so that
+// a scene is checked without a World (World::CheckBody compares the two).
+bool StepsWithinMaxSubsteps(const BodyModel& model, const BodyState& state,
+                            const Integrator& integrator, const WorldDef& world) {
+  const double dt = world.dt_s;
+  const double turn_bound = dt * kRateBoundFactor * model.inverse_principal_moments().maxCoeff();
+  if (turn_bound * turn_bound * state.angular_momentum.squaredNorm() <=
+      kMaxSubstepAngle * kMaxSubstepAngle) {
+    return true;
+  }
+  const double cap = world.max_substeps;
+  const double rotation_substeps =
+      std::ceil(dt * integrator.RotationErrorRate(model, state, dt) / kMaxSubstepAngle);
+  return rotation_substeps <= cap;  // false for a NaN rate too
+}
+
+}  // namespace
+
+void CheckIntegratorName(const std::string& name, KeyNaming naming) {
+  const char* const prefix = naming == KeyNaming::kParameter ? "~integrator: "
+                             : naming == KeyNaming::kRuntime ? "integrator: "
+                                                             : "";
+  RBS_CHECK(FindIntegrator(name) != nullptr, prefix + UnknownIntegratorMessage(name));
+}
+
+void CheckGravity(const Eigen::Vector3d& gravity_mps2, KeyNaming naming) {
+  switch (naming) {
+    case KeyNaming::kWorld:
+      RBS_CHECK(gravity_mps2.allFinite(), "gravity must be finite");
+      return;
+    case KeyNaming::kParameter:
+      RBS_CHECK(gravity_mps2.allFinite(),
+                "~gravity must be 3 finite numbers, got [" + FormatNumber(gravity_mps2.x()) + ", " +
+                    FormatNumber(gravity_mps2.y()) + ", " + FormatNumber(gravity_mps2.z()) + "]");
+      return;
+    case KeyNaming::kRuntime:
+      // dynamic_reconfigure has a key per component.
+      const char* const keys[] = {"gravity_x", "gravity_y", "gravity_z"};
+      for (int i = 0; i < 3; ++i) {
+        RBS_CHECK(std::isfinite(gravity_mps2[i]),
+                  std::string(keys[i]) + " must be finite, got " + FormatNumber(gravity_mps2[i]));
+      }
+      return;
+  }
+}
+
+void CheckWrenchTimeout(double timeout_s, KeyNaming naming) {
+  const bool valid = std::isfinite(timeout_s) && timeout_s >= 0.0;
+  switch (naming) {
+    case KeyNaming::kWorld:
+      RBS_CHECK(valid, "wrench timeout must be finite and >= 0");
+      return;
+    case KeyNaming::kParameter:
+      RBS_CHECK(valid, "~wrench_timeout must be >= 0, got " + FormatNumber(timeout_s));
+      return;
+    case KeyNaming::kRuntime:
+      RBS_CHECK(valid, "wrench_timeout must be finite and >= 0, got " + FormatNumber(timeout_s));
+      return;
+  }
+}
+
+void CheckRealTimeFactor(double factor, KeyNaming naming) {
+  const bool valid = std::isfinite(factor) && factor >= 0.0;
+  if (naming == KeyNaming::kParameter) {
+    RBS_CHECK(valid, "~real_time_factor must be >= 0, got " + FormatNumber(factor));
+  }
+  RBS_CHECK(valid, "real_time_factor must be finite and >= 0, got " + FormatNumber(factor));
+}
+
+void CheckPublishRate(double publish_rate_hz, double rate_hz, KeyNaming naming) {
+  const std::string key = naming == KeyNaming::kParameter ? "~publish_rate" : "publish_rate";
+  RBS_CHECK(publish_rate_hz > 0.0, key + " must be > 0, got " + FormatNumber(publish_rate_hz));
+  RBS_CHECK(publish_rate_hz <= rate_hz, key + " must not exceed ~rate (" + FormatNumber(rate_hz) +
+                                            "), got " + FormatNumber(publish_rate_hz));
+}
+
+void CheckWorldDef(const WorldDef& def) {
+  CheckIntegratorName(def.integrator, KeyNaming::kWorld);
+  RBS_CHECK(def.dt_s > 0.0, "dt must be > 0");
+  RBS_CHECK(def.threads >= 1, "threads must be >= 1");
+  // Checked by the setters alone before; after the checks above, so that a
+  // def that breaks one of those and one of these is named as it was.
+  CheckGravity(def.gravity, KeyNaming::kWorld);
+  CheckWrenchTimeout(def.wrench_timeout_s, KeyNaming::kWorld);
+  RBS_CHECK(def.max_substeps >= 1, "max_substeps must be >= 1");
+}
+
+void CheckRuntimeSettings(const RuntimeSettings& settings, double rate_hz) {
+  CheckRealTimeFactor(settings.real_time_factor, KeyNaming::kRuntime);
+  CheckPublishRate(settings.publish_rate_hz, rate_hz, KeyNaming::kRuntime);
+  CheckGravity(settings.gravity_mps2, KeyNaming::kRuntime);
+  CheckWrenchTimeout(settings.wrench_timeout_s, KeyNaming::kRuntime);
+  CheckIntegratorName(settings.integrator, KeyNaming::kRuntime);
+}
+
+void CheckBodyName(const std::string& name, std::size_t index) {
+  RBS_CHECK(name.size() <= kMaxBodyNameLength, Entry(index, name) + ": name is longer than " +
+                                                   std::to_string(kMaxBodyNameLength) +
+                                                   " characters");
+  RBS_CHECK(IsValidBodyName(name), Entry(index, name) +
+                                       ": name must be a letter then letters, digits or '_' "
+                                       "(it names a TF frame and topics)");
+}
+
+void CheckBodyProperties(const BodyProperties& properties) {
+  const std::string error = PropertiesError(properties);
+  RBS_CHECK(error.empty(), error);
+}
+
+void CheckBodyDef(const BodyDef& def, std::size_t index, const WorldDef& world,
+                  const Integrator& integrator, std::optional<std::size_t> name_owner) {
+  RBS_DCHECK(world.integrator == integrator.name());
+  const std::string& name = def.model.name();
+  RBS_CHECK(!name.empty(), Entry(index, name) + ": name must not be empty");
+  RBS_CHECK(!name_owner || *name_owner == index,
+            Entry(index, name) + ": name duplicates bodies[" + std::to_string(*name_owner) + "]");
+  const std::string properties_error = PropertiesError(def.properties);
+  RBS_CHECK(properties_error.empty(), Entry(index, name) + ": " + properties_error);
+  BodyFault fault = CheckState(def.model, def.initial_state);
+  if (fault == BodyFault::kNone &&
+      !StepsWithinMaxSubsteps(def.model, def.initial_state, integrator, world)) {
+    fault = BodyFault::kSpinAliased;
+  }
+  RBS_CHECK(fault == BodyFault::kNone,
+            Entry(index, name) + ": initial state is " + ToString(fault));
+}
+
+void CheckBodyDefs(const std::vector<BodyDef>& defs, const WorldDef& world) {
+  const std::unique_ptr<Integrator> integrator = MakeIntegrator(world.integrator);
+  std::unordered_map<std::string, std::size_t> first_with_name;
+  for (std::size_t i = 0; i < defs.size(); ++i) {
+    const auto first = first_with_name.find(defs[i].model.name());
+    CheckBodyDef(
+        defs[i], i, world, *integrator,
+        first == first_with_name.end() ? std::nullopt : std::optional<std::size_t>(first->second));
+    first_with_name.emplace(defs[i].model.name(), i);
+  }
+}
+
+}  // namespace rigid_body_sim::core

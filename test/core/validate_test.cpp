@@ -1,0 +1,231 @@
+// The one validator (validate.h): each check's message, the World's
+// constructor and setters through it, and its spin check against the World's
+// own substep count.
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "rigid_body_sim/core/check.h"
+#include "rigid_body_sim/core/format_number.h"
+#include "rigid_body_sim/core/validate.h"
+#include "rigid_body_sim/core/world.h"
+#include "test_bodies.h"
+
+namespace rigid_body_sim::core {
+namespace {
+
+const double kInf = std::numeric_limits<double>::infinity();
+const double kNan = std::numeric_limits<double>::quiet_NaN();
+
+// The std::invalid_argument message of `check`, or "accepted".
+template <typename Check>
+std::string MessageOf(Check check) {
+  try {
+    check();
+  } catch (const std::invalid_argument& error) {
+    return error.what();
+  }
+  return "accepted";
+}
+
+std::string WorldMessage(const WorldDef& def) {
+  return MessageOf([&] { World({test::PointBody()}, {BodyState{}}, def); });
+}
+
+TEST(Check, ThrowsTheMessageOnlyWhenTheConditionFails) {
+  int built = 0;
+  const auto message = [&built] {
+    ++built;
+    return std::string("x must be > 0");
+  };
+  RBS_CHECK(1 > 0, message());
+  EXPECT_EQ(built, 0);  // not built on the good path
+  EXPECT_EQ(MessageOf([&] { RBS_CHECK(-1 > 0, message()); }), "x must be > 0");
+  EXPECT_EQ(built, 1);
+  RBS_DCHECK(built == 1);
+}
+
+TEST(FormatNumber, IsPrintfG) {
+  EXPECT_EQ(FormatNumber(-1.0), "-1");
+  EXPECT_EQ(FormatNumber(0.25), "0.25");
+  EXPECT_EQ(FormatNumber(1e6), "1e+06");
+  EXPECT_EQ(FormatNumber(kInf), "inf");
+  EXPECT_EQ(FormatNumber(kNan), "nan");
+}
+
+TEST(Validate, TheDefaultsAreValid) {
+  EXPECT_EQ(MessageOf([] { CheckWorldDef(WorldDef{}); }), "accepted");
+  EXPECT_EQ(MessageOf([] { CheckRuntimeSettings(RuntimeSettings{}, 1000.0); }), "accepted");
+}
+
+// What the setters refused, the constructor refuses now too, in the same words.
+TEST(Validate, TheWorldConstructorRefusesWhatItsSettersRefuse) {
+  WorldDef def;
+  def.gravity = {0.0, kNan, 0.0};
+  EXPECT_EQ(WorldMessage(def), "gravity must be finite");
+  def.gravity = {0.0, 0.0, -kInf};
+  EXPECT_EQ(WorldMessage(def), "gravity must be finite");
+  def = WorldDef{};
+  def.wrench_timeout_s = -1.0;
+  EXPECT_EQ(WorldMessage(def), "wrench timeout must be finite and >= 0");
+  def.wrench_timeout_s = kInf;
+  EXPECT_EQ(WorldMessage(def), "wrench timeout must be finite and >= 0");
+  def = WorldDef{};
+  def.max_substeps = 0;  // doc/node.md: 1 to 10⁶
+  EXPECT_EQ(WorldMessage(def), "max_substeps must be >= 1");
+
+  World world({test::PointBody()}, {BodyState{}}, WorldDef{});
+  EXPECT_EQ(MessageOf([&] { world.SetGravity({kNan, 0.0, 0.0}); }), "gravity must be finite");
+  EXPECT_EQ(MessageOf([&] { world.SetWrenchTimeout(-1.0); }),
+            "wrench timeout must be finite and >= 0");
+  EXPECT_EQ(MessageOf([&] { world.SetIntegrator("leapfrog"); }),
+            MessageOf([] { CheckIntegratorName("leapfrog", KeyNaming::kWorld); }));
+}
+
+TEST(Validate, TheWorldDefsOlderChecksKeepTheirWordsAndOrder) {
+  WorldDef def;
+  def.integrator = "leapfrog";
+  EXPECT_EQ(MessageOf([&] { CheckWorldDef(def); }), UnknownIntegratorMessage("leapfrog"));
+  def = WorldDef{};
+  def.dt_s = 0.0;
+  def.gravity = {kNan, 0.0, 0.0};  // dt, checked first, is named
+  EXPECT_EQ(WorldMessage(def), "dt must be > 0");
+  def = WorldDef{};
+  def.threads = 0;
+  def.max_substeps = 0;
+  EXPECT_EQ(WorldMessage(def), "threads must be >= 1");
+}
+
+TEST(Validate, EachKeyIsNamedAsItsReaderNamesIt) {
+  const auto timeout = [](KeyNaming naming) {
+    return MessageOf([naming] { CheckWrenchTimeout(-1.0, naming); });
+  };
+  EXPECT_EQ(timeout(KeyNaming::kWorld), "wrench timeout must be finite and >= 0");
+  EXPECT_EQ(timeout(KeyNaming::kParameter), "~wrench_timeout must be >= 0, got -1");
+  EXPECT_EQ(timeout(KeyNaming::kRuntime), "wrench_timeout must be finite and >= 0, got -1");
+
+  EXPECT_EQ(MessageOf([] { CheckRealTimeFactor(-0.5, KeyNaming::kParameter); }),
+            "~real_time_factor must be >= 0, got -0.5");
+  EXPECT_EQ(MessageOf([] { CheckRealTimeFactor(kNan, KeyNaming::kRuntime); }),
+            "real_time_factor must be finite and >= 0, got nan");
+  EXPECT_EQ(MessageOf([] { CheckPublishRate(0.0, 500.0, KeyNaming::kParameter); }),
+            "~publish_rate must be > 0, got 0");
+  EXPECT_EQ(MessageOf([] { CheckPublishRate(1000.0, 500.0, KeyNaming::kParameter); }),
+            "~publish_rate must not exceed ~rate (500), got 1000");
+  EXPECT_EQ(MessageOf([] { CheckPublishRate(1000.0, 500.0, KeyNaming::kRuntime); }),
+            "publish_rate must not exceed ~rate (500), got 1000");
+  EXPECT_EQ(MessageOf([] { CheckIntegratorName("leapfrog", KeyNaming::kParameter); }),
+            "~integrator: " + UnknownIntegratorMessage("leapfrog"));
+  EXPECT_EQ(MessageOf([] { CheckIntegratorName("leapfrog", KeyNaming::kRuntime); }),
+            "integrator: " + UnknownIntegratorMessage("leapfrog"));
+  EXPECT_EQ(MessageOf([] { CheckGravity({0.0, kInf, 0.0}, KeyNaming::kRuntime); }),
+            "gravity_y must be finite, got inf");
+}
+
+TEST(Validate, RuntimeSettingsAreCheckedInTheConfigurationsOrder) {
+  RuntimeSettings settings;
+  settings.integrator = "leapfrog";
+  settings.wrench_timeout_s = -1.0;
+  settings.real_time_factor = -1.0;
+  EXPECT_EQ(MessageOf([&] { CheckRuntimeSettings(settings, 1000.0); }),
+            "real_time_factor must be finite and >= 0, got -1");
+  settings.real_time_factor = 1.0;
+  EXPECT_EQ(MessageOf([&] { CheckRuntimeSettings(settings, 1000.0); }),
+            "wrench_timeout must be finite and >= 0, got -1");
+  settings.wrench_timeout_s = 0.0;
+  EXPECT_EQ(MessageOf([&] { CheckRuntimeSettings(settings, 1000.0); }),
+            "integrator: " + UnknownIntegratorMessage("leapfrog"));
+}
+
+TEST(Validate, BodyNamesFollowTheScenesRules) {
+  EXPECT_EQ(MessageOf([] { CheckBodyName("t_handle2", 0); }), "accepted");
+  EXPECT_EQ(MessageOf([] { CheckBodyName("9lives", 3); }),
+            "bodies[3] (name '9lives'): name must be a letter then letters, digits or '_' (it "
+            "names a TF frame and topics)");
+  const std::string long_name(kMaxBodyNameLength + 1, 'a');
+  EXPECT_EQ(MessageOf([&] { CheckBodyName(long_name, 1); }),
+            "bodies[1] (name '" + long_name + "'): name is longer than 128 characters");
+}
+
+TEST(Validate, BodyPropertiesNameTheirKey) {
+  BodyProperties properties;
+  EXPECT_EQ(MessageOf([&] { CheckBodyProperties(properties); }), "accepted");
+  properties.gravity_scale = kInf;
+  EXPECT_EQ(MessageOf([&] { CheckBodyProperties(properties); }),
+            "gravity_scale must be a finite number, got inf");
+  properties.gravity_scale = 0.0;
+  properties.angular_damping_per_s = -2.0;
+  EXPECT_EQ(MessageOf([&] { CheckBodyProperties(properties); }),
+            "angular_damping must be a finite number >= 0 [1/s], got -2");
+}
+
+TEST(Validate, ABodyDefIsNamedByItsEntry) {
+  const WorldDef world;
+  const std::unique_ptr<Integrator> integrator = MakeIntegrator(world.integrator);
+  const auto message = [&](const BodyDef& def, std::optional<std::size_t> owner) {
+    return MessageOf([&] { CheckBodyDef(def, 4, world, *integrator, owner); });
+  };
+  BodyDef rod{test::RodBody()};
+  EXPECT_EQ(message(rod, std::nullopt), "accepted");
+  EXPECT_EQ(message(rod, 1), "bodies[4] (name 'rod'): name duplicates bodies[1]");
+  EXPECT_EQ(message(BodyDef{BodyModel("", {{1.0, {0, 0, 0}}})}, std::nullopt),
+            "bodies[4] (name ''): name must not be empty");
+  BodyDef damped = rod;
+  damped.properties.linear_damping_per_s = -1.0;
+  EXPECT_EQ(message(damped, std::nullopt),
+            "bodies[4] (name 'rod'): linear_damping must be a finite number >= 0 [1/s], got -1");
+  BodyDef fast = rod;
+  fast.initial_state.linear_momentum = {4.0 * 3.5e8, 0.0, 0.0};
+  EXPECT_EQ(message(fast, std::nullopt), "bodies[4] (name 'rod'): initial state is faster_than_light");
+  BodyDef spinning = BodyDef{test::Diag123Body()};
+  spinning.initial_state.angular_momentum = {1e7, 2e7, 3e7};
+  EXPECT_EQ(message(spinning, std::nullopt),
+            "bodies[4] (name 'diag123'): initial state is spin_aliased");
+}
+
+TEST(Validate, ASceneIsCheckedAsTheWorldBuiltFromItChecksIt) {
+  const std::vector<BodyDef> twins = {BodyDef{test::RodBody()}, BodyDef{test::PointBody()},
+                                      BodyDef{test::RodBody()}};
+  const std::string expected = "bodies[2] (name 'rod'): name duplicates bodies[0]";
+  EXPECT_EQ(MessageOf([&] { CheckBodyDefs(twins, WorldDef{}); }), expected);
+  EXPECT_EQ(MessageOf([&] {
+              World({test::RodBody(), test::PointBody(), test::RodBody()},
+                    std::vector<BodyState>(3), WorldDef{});
+            }),
+            expected);
+  EXPECT_EQ(MessageOf([&] { CheckBodyDefs({twins[0], twins[1]}, WorldDef{}); }), "accepted");
+}
+
+// The validator counts a new body's substeps itself (a scene is checked
+// without a World); it must agree with World::SubstepsFor for every scheme,
+// cap and spin, up to where the body is refused.
+TEST(Validate, TheSpinCheckIsTheWorldsSubstepCount) {
+  const Eigen::Vector3d axis = Eigen::Vector3d(0.3, 1.0, 0.2).normalized();
+  for (const std::string& name : IntegratorNames()) {
+    for (const std::uint32_t max_substeps : {1u, 7u, 1000u}) {
+      WorldDef def;
+      def.integrator = name;
+      def.max_substeps = max_substeps;
+      const World world({test::Diag123Body()}, {BodyState{}}, def);
+      int refused = 0;
+      for (double l = 1.0; l < 1e7; l *= 1.07) {
+        BodyDef body{test::Diag123Body()};
+        body.initial_state.angular_momentum = l * axis;
+        const bool accepted =
+            MessageOf([&] { CheckBodyDef(body, 0, def, world.integrator()); }) == "accepted";
+        EXPECT_EQ(accepted, world.SubstepsFor(0, body.initial_state) != 0)
+            << name << ", max_substeps " << max_substeps << ", |L| " << l;
+        refused += accepted ? 0 : 1;
+      }
+      // The sweep reaches the cap (an exact scheme may never need substeps).
+      if (name == kDefaultIntegrator) {
+        EXPECT_GT(refused, 0);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace rigid_body_sim::core
