@@ -1,17 +1,14 @@
 #include "rigid_body_sim/ros/runtime_config.h"
 
-#include <cmath>
+#include <stdexcept>
 #include <vector>
 
-#include "rigid_body_sim/core/format_number.h"
-#include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/log_thread.h"
 
 namespace rigid_body_sim {
 
-using core::FormatNumber;
-
-SimulationNodeConfig ToConfig(const NodeSettings& settings) {
+SimulationNodeConfig ToConfig(const core::RuntimeSettings& settings) {
   SimulationNodeConfig config = SimulationNodeConfig::__getDefault__();
   config.real_time_factor = settings.real_time_factor;
   config.publish_rate = settings.publish_rate_hz;
@@ -34,44 +31,19 @@ NodeSettings WithConfig(NodeSettings settings, const SimulationNodeConfig& confi
   return settings;
 }
 
-bool SameRuntimeSettings(const NodeSettings& a, const NodeSettings& b) {
-  return a.real_time_factor == b.real_time_factor && a.publish_rate_hz == b.publish_rate_hz &&
-         a.gravity_mps2 == b.gravity_mps2 && a.wrench_timeout_s == b.wrench_timeout_s &&
-         a.publish_tf == b.publish_tf && a.integrator == b.integrator;
-}
-
 std::optional<std::string> WhyNotApplicable(const NodeSettings& settings) {
-  if (!(settings.real_time_factor >= 0.0) || !std::isfinite(settings.real_time_factor)) {
-    return "real_time_factor must be finite and >= 0, got " +
-           FormatNumber(settings.real_time_factor);
-  }
-  if (!(settings.publish_rate_hz > 0.0)) {
-    return "publish_rate must be > 0, got " + FormatNumber(settings.publish_rate_hz);
-  }
-  if (settings.publish_rate_hz > settings.rate_hz) {
-    return "publish_rate must not exceed ~rate (" + FormatNumber(settings.rate_hz) + "), got " +
-           FormatNumber(settings.publish_rate_hz);
-  }
-  const char* const gravity_keys[] = {"gravity_x", "gravity_y", "gravity_z"};
-  for (int i = 0; i < 3; ++i) {
-    if (!std::isfinite(settings.gravity_mps2[i])) {
-      return std::string(gravity_keys[i]) + " must be finite, got " +
-             FormatNumber(settings.gravity_mps2[i]);
-    }
-  }
-  if (!(settings.wrench_timeout_s >= 0.0) || !std::isfinite(settings.wrench_timeout_s)) {
-    return "wrench_timeout must be finite and >= 0, got " + FormatNumber(settings.wrench_timeout_s);
-  }
-  if (core::FindIntegrator(settings.integrator) == nullptr) {
-    return "integrator: " + core::UnknownIntegratorMessage(settings.integrator);
+  try {
+    core::CheckRuntimeSettings(settings, settings.rate_hz);
+  } catch (const std::invalid_argument& why) {
+    return why.what();
   }
   return std::nullopt;
 }
 
-RuntimeConfig::RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettings& initial,
+RuntimeConfig::RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettings& in_force,
                              ApplyFn apply)
-    : private_nh_(private_nh), current_(initial), apply_(std::move(apply)) {
-  const SimulationNodeConfig config = ToConfig(initial);
+    : private_nh_(private_nh), in_force_(in_force), apply_(std::move(apply)) {
+  const SimulationNodeConfig config = ToConfig(in_force_);
   // The server reads its first configuration from the parameter server, where
   // the .cfg keys gravity_x... are not set: write them all first, so that it
   // never serves the .cfg defaults.
@@ -86,19 +58,18 @@ RuntimeConfig::RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettin
 }
 
 void RuntimeConfig::OnReconfigure(SimulationNodeConfig& config, std::uint32_t /*level*/) {
-  const NodeSettings requested = WithConfig(current_, config);
-  if (SameRuntimeSettings(requested, current_)) return;
+  const NodeSettings requested = WithConfig(in_force_, config);
+  if (core::SameRuntimeSettings(requested, in_force_)) return;
   if (const std::optional<std::string> why = WhyNotApplicable(requested)) {
     LogOffThread(LogLevel::kWarn, "dynamic_reconfigure: " + *why +
                                       "; not applied, the configuration in force stays");
-    config = ToConfig(current_);
+    config = ToConfig(in_force_);
     return;
   }
-  apply_(requested);
-  current_ = requested;
+  apply_(requested);  // the node's settings are `requested` from here on
   // The scene's key, so that a respawned node starts with this gravity too
   // (the server writes gravity_x... and the other keys itself).
-  const Eigen::Vector3d& g = current_.gravity_mps2;
+  const Eigen::Vector3d& g = requested.gravity_mps2;
   private_nh_.setParam("gravity", std::vector<double>{g.x(), g.y(), g.z()});
 }
 

@@ -41,9 +41,9 @@ TEST(RuntimeConfig, ConfigAndSettingsConvertExactly) {
   NodeSettings other;  // every runtime key different, the rest too
   other.rate_hz = 123.0;
   const NodeSettings back = WithConfig(other, config);
-  EXPECT_TRUE(SameRuntimeSettings(back, settings));
+  EXPECT_TRUE(core::SameRuntimeSettings(back, settings));
   EXPECT_EQ(back.rate_hz, 123.0);  // not a runtime key
-  EXPECT_FALSE(SameRuntimeSettings(other, settings));
+  EXPECT_FALSE(core::SameRuntimeSettings(other, settings));
 }
 
 TEST(RuntimeConfig, EveryValidValueIsApplicable) {
@@ -123,13 +123,14 @@ TEST(RuntimeConfig, TheIntegratorEnumIsTheCoresTable) {
   }
   EXPECT_EQ(EnumValues(edit_method), core::IntegratorNames()) << edit_method;
   EXPECT_EQ(default_value, core::kDefaultIntegrator);
-  EXPECT_EQ(ToConfig(NodeSettings{}).integrator, SimulationNodeConfig::__getDefault__().integrator);
+  const NodeSettings defaults;
+  EXPECT_EQ(ToConfig(defaults).integrator, SimulationNodeConfig::__getDefault__().integrator);
 }
 
 TEST(RuntimeConfig, TheCfgDefaultsAreTheDocumentedParameterDefaults) {
   const NodeSettings defaults;
   const NodeSettings from_cfg = WithConfig(defaults, SimulationNodeConfig::__getDefault__());
-  EXPECT_TRUE(SameRuntimeSettings(from_cfg, defaults));
+  EXPECT_TRUE(core::SameRuntimeSettings(from_cfg, defaults));
 }
 
 }  // namespace

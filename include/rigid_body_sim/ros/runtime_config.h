@@ -17,14 +17,14 @@
 
 namespace rigid_body_sim {
 
-// The runtime keys of `settings` as the server's configuration.
-SimulationNodeConfig ToConfig(const NodeSettings& settings);
-// `settings` with the runtime keys taken from `config`.
+// The runtime keys as the server's configuration.
+SimulationNodeConfig ToConfig(const core::RuntimeSettings& settings);
+// `settings` with the runtime keys taken from `config` (the one place that
+// maps the .cfg's keys to core::RuntimeSettings' fields, with ToConfig).
 NodeSettings WithConfig(NodeSettings settings, const SimulationNodeConfig& config);
-// Whether two settings agree on every runtime key.
-bool SameRuntimeSettings(const NodeSettings& a, const NodeSettings& b);
 // Why a node stepping at settings.rate_hz cannot take the runtime keys of
-// `settings`, naming the first bad key; nullopt if it can.
+// `settings` (core::CheckRuntimeSettings), naming the first bad key; nullopt
+// if it can.
 std::optional<std::string> WhyNotApplicable(const NodeSettings& settings);
 
 class RuntimeConfig {
@@ -33,8 +33,12 @@ class RuntimeConfig {
   using ApplyFn = std::function<void(const NodeSettings&)>;
 
   // Serves ~set_parameters, ~parameter_descriptions and ~parameter_updates in
-  // private_nh's namespace, on its callback queue, starting from `initial`.
-  RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettings& initial, ApplyFn apply);
+  // private_nh's namespace, on its callback queue, starting from `in_force`:
+  // the node's settings, the one copy of the runtime keys, which must outlive
+  // this server. It reads them on its queue's thread and never writes them;
+  // `apply` changes them on the stepping thread while this thread waits for
+  // it, so the two never touch them at once.
+  RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettings& in_force, ApplyFn apply);
 
  private:
   // dynamic_reconfigure's callback: `config` is what the server then reports
@@ -43,7 +47,7 @@ class RuntimeConfig {
   void OnReconfigure(SimulationNodeConfig& config, std::uint32_t level);
 
   ros::NodeHandle private_nh_;
-  NodeSettings current_;
+  const NodeSettings& in_force_;
   ApplyFn apply_;
   boost::recursive_mutex mutex_;  // the server's; given so updateConfig is safe
   std::optional<dynamic_reconfigure::Server<SimulationNodeConfig>> server_;

@@ -7,10 +7,8 @@
 #include <vector>
 
 #include <ros/node_handle.h>
-#include <Eigen/Core>
 
 #include "rigid_body_sim/core/imu_noise.h"
-#include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/world_def.h"
 
 namespace rigid_body_sim {
@@ -31,17 +29,15 @@ struct ShardSettings {
   std::uint32_t index = 0;
 };
 
-struct NodeSettings {
+// The runtime keys (integrator, gravity_mps2, wrench_timeout_s,
+// real_time_factor, publish_rate_hz, publish_tf) are the base's: the node's
+// settings hold the one copy of them, which the runtime configuration reads
+// and the node changes (SimulationNode::ApplyRuntimeSettings).
+struct NodeSettings : core::RuntimeSettings {
   std::string world_frame = "world";
-  std::string tf_prefix;           // prepended as written to body names for TF
-  double rate_hz = 1000.0;         // integration rate, dt = 1 / rate
-  double publish_rate_hz = 100.0;  // output rate, <= rate
-  std::string integrator = core::kDefaultIntegrator;
-  Eigen::Vector3d gravity_mps2 = Eigen::Vector3d::Zero();
-  double wrench_timeout_s = 0.0;  // 0: a wrench is held until replaced
-  double real_time_factor = 1.0;  // 0: as fast as possible
+  std::string tf_prefix;    // prepended as written to body names for TF
+  double rate_hz = 1000.0;  // integration rate, dt = 1 / rate
   bool publish_clock = false;
-  bool publish_tf = true;
   // Each body's own topics (~<body>/pose, ...) advertised (extension): off
   // spares the master 6 registrations per body in very large scenes.
   bool per_body_topics = true;
