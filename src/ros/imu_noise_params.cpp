@@ -3,7 +3,7 @@
 #include <cmath>
 
 #include "rigid_body_sim/core/format_number.h"
-#include "rigid_body_sim/ros/scene_params.h"
+#include "rigid_body_sim/ros/scene_error.h"
 
 namespace rigid_body_sim {
 namespace {
