@@ -99,7 +99,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   if (world->size() != before + 1 || !Finite(world->state(before))) Fail("finite state in the world");
-  world->RemoveBody(before);
+  world->RemoveBody(world->id(before));
   if (world->size() != before) Fail("the world back to its bodies");
   return 0;
 }

@@ -36,7 +36,10 @@ NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& private_nh, const NodeSe
       conservation_(world),
       sweep_per_step_(world.size() / kStepsPerConservationSweep + 1),
       updater_(ros::NodeHandle(), private_nh),
-      reported_faults_(world.size(), core::BodyFault::kNone) {
+      reported_faults_() {
+  for (std::size_t body = 0; body < world.size(); ++body) {
+    reported_faults_.Insert(world.id(body), core::BodyFault::kNone);
+  }
   updater_.setHardwareID("none");
   updater_.add("simulation", this, &NodeDiagnostics::Fill);
 }
@@ -56,8 +59,9 @@ void NodeDiagnostics::RecordStep(Clock::duration step_time, const ros::Time& sta
 void NodeDiagnostics::ReportNewFaults(const ros::Time& stamp) {
   for (std::size_t body = 0; body < world_.size(); ++body) {
     const core::BodyFault fault = world_.fault(body);
-    if (fault == core::BodyFault::kNone || reported_faults_[body] == fault) continue;
-    reported_faults_[body] = fault;
+    core::BodyFault& reported = reported_faults_.at(world_.id(body));
+    if (fault == core::BodyFault::kNone || reported == fault) continue;
+    reported = fault;
     if (!fault_errors_.Ready()) continue;
     LogOffThread(LogLevel::kError,
                  Format("body '%s' frozen at its last finite state (%s) at t = %.6f s; "
@@ -66,26 +70,26 @@ void NodeDiagnostics::ReportNewFaults(const ros::Time& stamp) {
   }
 }
 
-void NodeDiagnostics::OnBodyStateSet(std::size_t body) {
+void NodeDiagnostics::OnBodyStateSet(core::BodyId body) {
   conservation_.Rebase(world_, body);
-  reported_faults_[body] = core::BodyFault::kNone;
+  reported_faults_.at(body) = core::BodyFault::kNone;
   frozen_seen_ = world_.frozen_count();
 }
 
 void NodeDiagnostics::OnReset() {
   conservation_.RebaseAll(world_);
-  reported_faults_.assign(world_.size(), core::BodyFault::kNone);
+  reported_faults_.ForEach([](core::BodyFault& reported) { reported = core::BodyFault::kNone; });
   frozen_seen_ = world_.frozen_count();
 }
 
-void NodeDiagnostics::OnBodyAdded() {
-  conservation_.AddBody(world_);
-  reported_faults_.push_back(core::BodyFault::kNone);
+void NodeDiagnostics::OnBodyAdded(core::BodyId body) {
+  conservation_.AddBody(world_, body);
+  reported_faults_.Insert(body, core::BodyFault::kNone);
 }
 
-void NodeDiagnostics::OnBodyRemoved(std::size_t body) {
+void NodeDiagnostics::OnBodyRemoved(core::BodyId body) {
   conservation_.RemoveBody(body);
-  reported_faults_.erase(reported_faults_.begin() + static_cast<std::ptrdiff_t>(body));
+  reported_faults_.Erase(body);
   frozen_seen_ = world_.frozen_count();
 }
 

@@ -105,6 +105,9 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
         });
         requests_.TrimMemorySoon();
       }) {
+  // Each follows every spawn and delete.
+  world_.AddListener(&publisher_);
+  world_.AddListener(&diagnostics_);
   const ros::TransportHints low_latency = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(private_nh_.subscribe(
       "particle_wrench", kWrenchQueueSize, &SimulationNode::OnParticleWrench, this, low_latency));
@@ -421,7 +424,7 @@ bool SimulationNode::OnStepWithWrenches(StepWithWrenches::Request& request,
 bool SimulationNode::OnSetBodyState(SetBodyState::Request& request,
                                     SetBodyState::Response& response) {
   response.success = false;
-  const std::optional<std::size_t> body = world_.FindBody(request.body);
+  const std::optional<core::BodyId> body = world_.FindBody(request.body);
   if (!body) {
     response.message = NotHereMessage(request.body, intake_.frames());
     return true;
@@ -429,7 +432,7 @@ bool SimulationNode::OnSetBodyState(SetBodyState::Request& request,
   const std::optional<core::BodyState> state =
       StateFromRequest(world_.model(*body), request.pose, request.twist, &response.message);
   if (!state) return true;
-  if (world_.SubstepsFor(*body, *state) == 0) {
+  if (world_.SubstepsFor(world_.IndexOf(*body).value(), *state) == 0) {
     response.message = "the state would be spin_aliased: its step would need more than " +
                        std::to_string(world_.options().max_substeps) + " substeps (~max_substeps)";
     return true;
@@ -473,7 +476,7 @@ bool SimulationNode::OnClearBodyWrenches(ClearBodyWrenches::Request& request,
     response.message = "cleared the wrenches of every body";
     return true;
   }
-  const std::optional<std::size_t> body = world_.FindBody(request.body);
+  const std::optional<core::BodyId> body = world_.FindBody(request.body);
   response.success = body.has_value();
   if (!body) {
     response.message = "body: " + NotHereMessage(request.body, intake_.frames());
@@ -523,16 +526,13 @@ void SimulationNode::AddBody(SceneBodies entry, SpawnBody::Response* response) {
   }
   body_count_ = world_.size();
   const core::BodyModel& model = world_.model(world_.size() - 1);
-  intake_.AddBody(model);
-  publisher_.AddBody(model);
-  diagnostics_.OnBodyAdded();
   response->success = true;
   response->message =
       "spawned '" + model.name() + "' as bodies[" + std::to_string(world_.size() - 1) + "]";
 }
 
 bool SimulationNode::OnDeleteBody(DeleteBody::Request& request, DeleteBody::Response& response) {
-  const std::optional<std::size_t> body = world_.FindBody(request.body);
+  const std::optional<core::BodyId> body = world_.FindBody(request.body);
   response.success = body.has_value();
   if (!body) {
     response.message = "body: " + NotHereMessage(request.body, intake_.frames());
@@ -540,9 +540,6 @@ bool SimulationNode::OnDeleteBody(DeleteBody::Request& request, DeleteBody::Resp
   }
   world_.RemoveBody(*body);
   body_count_ = world_.size();
-  intake_.RemoveBody(request.body);
-  publisher_.RemoveBody(*body);
-  diagnostics_.OnBodyRemoved(*body);
   response.message = "deleted '" + request.body + "'";
   return true;
 }

@@ -23,7 +23,7 @@
 
 namespace rigid_body_sim {
 
-class NodeDiagnostics {
+class NodeDiagnostics : public core::BodyListener {
  public:
   using Clock = core::StepPacer::Clock;
   // Status and diagnostics period, wall time.
@@ -46,13 +46,13 @@ class NodeDiagnostics {
   void Report(Clock::time_point now, const ros::Time& stamp, bool paused);
 
   // Events that change what the conservation drifts are measured against.
-  void OnWrenchHeld(std::size_t body) { conservation_.MarkLoaded(body); }
-  void OnBodyStateSet(std::size_t body);
+  void OnWrenchHeld(core::BodyId body) { conservation_.MarkLoaded(body); }
+  void OnBodyStateSet(core::BodyId body);
   void OnWrenchesCleared() { conservation_.RebaseAll(world_); }
   void OnReset();
   // The world appended a body / removed `body`.
-  void OnBodyAdded();
-  void OnBodyRemoved(std::size_t body);
+  void OnBodyAdded(core::BodyId body) override;
+  void OnBodyRemoved(core::BodyId body) override;
 
  private:
   // Statistics over one report period (about a second of wall time).
@@ -80,8 +80,8 @@ class NodeDiagnostics {
   diagnostic_updater::Updater updater_;
   Window window_;
   std::size_t frozen_seen_ = 0;
-  std::vector<core::BodyFault> reported_faults_;  // last fault logged per body
-  LogThrottle fault_errors_{1.0};                 // one frozen-body line a second at most
+  core::BodyMap<core::BodyFault> reported_faults_;  // last fault logged per body
+  LogThrottle fault_errors_{1.0};                   // one frozen-body line a second at most
   // The last completed window, as reported.
   double step_time_mean_us_ = 0.0;
   double step_time_max_us_ = 0.0;

@@ -80,9 +80,7 @@ void CasimirLoadedStep4(double h, LoadedLanes* lanes);
 // `loaded_lanes(dt_s, lanes)` (nullptr: a scheme without them), the rest
 // `step_one(model, load, dt_s, state)`.
 template <typename FreeKernel, typename LoadedKernel, typename StepOne>
-void StepLoadedInLanes(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
-                       const std::vector<HeldLoads>& loads, double dt_s,
-                       std::vector<BodyState>* states, FreeKernel free_lanes,
+void StepLoadedInLanes(const BodyBatch& batch, double dt_s, FreeKernel free_lanes,
                        LoadedKernel loaded_lanes, StepOne step_one) {
   constexpr bool kHasLoadedLanes = !std::is_same_v<LoadedKernel, std::nullptr_t>;
   FreeLanes pulled;  // bodies under a constant force
@@ -93,10 +91,10 @@ void StepLoadedInLanes(const std::vector<BodyModel>& models, const std::vector<s
     free_lanes(dt_s, &pulled);
     for (std::size_t l = 0; l < pulled_count; ++l) {
       const std::size_t body = pulled_bodies[l];
-      BodyState& state = (*states)[body];
+      BodyState& state = batch.states[body];
       pulled.Store(l, &state);
-      const Eigen::Vector3d impulse = dt_s * loads[body].force_world();
-      state.position += (0.5 * dt_s * models[body].inverse_mass()) * impulse;
+      const Eigen::Vector3d impulse = dt_s * batch.loads[body].force_world();
+      state.position += (0.5 * dt_s * batch.models[body].inverse_mass()) * impulse;
       state.linear_momentum += impulse;
     }
     pulled_count = 0;
@@ -117,14 +115,15 @@ void StepLoadedInLanes(const std::vector<BodyModel>& models, const std::vector<s
       const std::size_t count = turned_count[group];
       if (count < kLanes) lanes.FillIdle(count);
       loaded_lanes(dt_s, &lanes);
-      for (std::size_t l = 0; l < count; ++l) lanes.Store(l, &(*states)[turned_bodies[group][l]]);
+      for (std::size_t l = 0; l < count; ++l)
+        lanes.Store(l, &batch.states[turned_bodies[group][l]]);
     }
     turned_count[group] = 0;
   };
-  for (const std::size_t body : bodies) {
-    const BodyModel& model = models[body];
-    const HeldLoads& load = loads[body];
-    BodyState& state = (*states)[body];
+  for (const std::size_t body : batch) {
+    const BodyModel& model = batch.models[body];
+    const HeldLoads& load = batch.loads[body];
+    BodyState& state = batch.states[body];
     const bool damped = load.has_damping();
     if (!load.has_torque() && !damped && FitsFreeLanes(model, state, dt_s)) {
       pulled.Load(pulled_count, model, state);
