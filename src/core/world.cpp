@@ -6,6 +6,7 @@
 #include <unordered_map>
 
 #include "rigid_body_sim/core/kinematics.h"
+#include "rigid_body_sim/core/step_policy.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -16,11 +17,6 @@ constexpr double kTimeToleranceInSteps = 1e-3;
 
 // A couple smaller than this along a null axis is round-off, not a dropped load.
 constexpr double kDroppedCoupleTolerance_Nm = 1e-9;
-
-// Every rate SubstepsFor weighs is at most this times |L|·max_k(1/λ_k) (the
-// Casimir rate ∛(αβ(α + β)) <= ∛2·max(α, β)), so a body below the bound
-// needs no closer look.
-const double kRateBoundFactor = std::cbrt(2.0);
 
 // Bodies handed to Integrator::StepFree or StepLoaded at a time: small
 // enough that their states are still in cache when they are checked.
@@ -90,10 +86,7 @@ void World::PrepareBody(std::size_t index) {
   if (!model.is_full_rank()) hot.loads[index].SetTorqueProjector(model.range_projector());
   const BodyProperties& properties = bodies_.cold().properties[index];
   hot.loads[index].SetDamping(properties.linear_damping_per_s, properties.angular_damping_per_s);
-  const double turn_bound =
-      options_.dt_s * kRateBoundFactor * model.inverse_principal_moments().maxCoeff();
-  const double reach = kMaxSubstepAngle / turn_bound;  // inf for a point mass
-  hot.one_step_momentum_sq[index] = reach * reach;
+  hot.one_step_momentum_sq[index] = OneStepMomentumSq(model, options_.dt_s);
 }
 
 BodyId World::AddBody(BodyModel model, const BodyState& initial_state,
@@ -127,39 +120,7 @@ std::uint32_t World::SubstepsFor(std::size_t index, const BodyState& state) cons
 
 std::uint32_t World::SubstepsFor(const BodyModel& model, const HeldLoads* load,
                                  const BodyState& state) const {
-  const double dt = options_.dt_s;
-  // Below the bound on every rate, one step (squared, to spare the root).
-  const double turn_bound = dt * kRateBoundFactor * model.inverse_principal_moments().maxCoeff();
-  const double reach =
-      load != nullptr ? state.angular_momentum.norm() + dt * load->TorqueBound() : 0.0;
-  if (load != nullptr ? turn_bound * reach <= kMaxSubstepAngle
-                      : turn_bound * turn_bound * state.angular_momentum.squaredNorm() <=
-                            kMaxSubstepAngle * kMaxSubstepAngle) {
-    return 1;
-  }
-  double rotation_rate = integrator_->RotationErrorRate(model, state, dt);
-  double load_rate = 0.0;
-  if (load != nullptr) {
-    // The kick changes L within the step, so the rates at its end count too.
-    const Eigen::Matrix3d R_WB = state.orientation.toRotationMatrix();
-    BodyState kicked = state;
-    kicked.angular_momentum += dt * load->At(0.0, R_WB).torque;
-    rotation_rate = std::max(rotation_rate, integrator_->RotationErrorRate(model, kicked, dt));
-    load_rate =
-        std::max(load->TurnRate(R_WB, AngularVelocity(model, R_WB, state.angular_momentum)),
-                 load->TurnRate(R_WB, AngularVelocity(model, R_WB, kicked.angular_momentum)));
-  }
-  const double cap = options_.max_substeps;
-  const double rotation_substeps = std::ceil(dt * rotation_rate / kMaxSubstepAngle);
-  if (!(rotation_substeps <= cap)) return 0;  // a NaN rate too
-  // A load turning faster than the cap can follow (a force off the axis of a
-  // needle spun up about it) is aliased however often it is sampled: it
-  // is sampled at the rotation's substeps alone, and freezes nothing. Its
-  // impulse per step is still bounded by dt times the load's size.
-  const double load_substeps = std::ceil(dt * load_rate / kMaxSubstepAngle);
-  const double substeps =
-      load_substeps <= cap ? std::max(rotation_substeps, load_substeps) : rotation_substeps;
-  return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(substeps));
+  return core::SubstepsFor(*integrator_, model, state, load, options_.dt_s, options_.max_substeps);
 }
 
 void World::Step() {
@@ -201,50 +162,49 @@ void World::Step() {
 
 void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   BodyHotColumns& hot = bodies_.hot();
+  const Integrator& integrator = *integrator_;
+  const double dt_s = options_.dt_s;
+  const std::uint32_t max_substeps = options_.max_substeps;
   for (std::size_t i = begin; i < end; ++i) {
     if (hot.faults[i] != BodyFault::kNone) continue;
     const BodyModel& model = hot.models[i];
     BodyState& state = hot.states[i];
-    const bool loaded = hot.loaded[i];
-    if (!loaded && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
-      continue;  // at rest and unloaded: nothing can move it, so skip the scheme
-    }
-    // The cheap bound of SubstepsFor first, squared: (|L| + dt τ)² <= 2|L|² + 2(dt τ)².
-    const double kick = loaded ? options_.dt_s * hot.loads[i].TorqueBound() : 0.0;
-    const double reach_sq = loaded ? 2.0 * (state.angular_momentum.squaredNorm() + kick * kick)
-                                   : state.angular_momentum.squaredNorm();
-    const std::uint32_t substeps =
-        reach_sq <= hot.one_step_momentum_sq[i]
-            ? 1
-            : SubstepsFor(model, loaded ? &hot.loads[i] : nullptr, state);
-    if (substeps == 0) {
-      const BodyFault fault = CheckState(model, state);  // a NaN state set from outside
-      Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased, share);
-      continue;
-    }
-    if (substeps == 1 && model.is_full_rank()) {
-      if (loaded) {
-        share->loaded_batch.push_back(i);
-        share->loaded_batch_before.push_back(state);
-        if (share->loaded_batch.size() == kBatch) StepLoadedBatch(share);
-      } else {
-        share->free_batch.push_back(i);
-        share->free_batch_before.push_back({state.position, state.orientation});
-        if (share->free_batch.size() == kBatch) StepFreeBatch(share);
+    const HeldLoads* load = hot.loaded[i] ? &hot.loads[i] : nullptr;
+    const StepPlan plan =
+        PlanStep(integrator, model, state, load, hot.one_step_momentum_sq[i], dt_s, max_substeps);
+    switch (plan.step_class) {
+      case StepClass::kAtRest:
+        break;
+      case StepClass::kFrozen: {
+        const BodyFault fault = CheckState(model, state);  // a NaN state set from outside
+        Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased, share);
+        break;
       }
-      continue;
+      case StepClass::kBatched:
+        if (load != nullptr) {
+          share->loaded_batch.push_back(i);
+          share->loaded_batch_before.push_back(state);
+          if (share->loaded_batch.size() == kBatch) StepLoadedBatch(share);
+        } else {
+          share->free_batch.push_back(i);
+          share->free_batch_before.push_back({state.position, state.orientation});
+          if (share->free_batch.size() == kBatch) StepFreeBatch(share);
+        }
+        break;
+      case StepClass::kSubsteps: {
+        if (load != nullptr && !model.is_full_rank() &&
+            load->DroppedTorque(state.orientation.toRotationMatrix()) >
+                kDroppedCoupleTolerance_Nm) {
+          ++share->dropped_couples;
+        }
+        share->substeps_max = std::max(share->substeps_max, plan.substeps);
+        const BodyState before = state;
+        const double h = dt_s / plan.substeps;
+        for (std::uint32_t k = 0; k < plan.substeps; ++k) integrator.Step(model, load, h, &state);
+        FinishStep(i, before, share);
+        break;
+      }
     }
-    if (loaded && !model.is_full_rank() &&
-        hot.loads[i].DroppedTorque(state.orientation.toRotationMatrix()) >
-            kDroppedCoupleTolerance_Nm) {
-      ++share->dropped_couples;
-    }
-    share->substeps_max = std::max(share->substeps_max, substeps);
-    const BodyState before = state;
-    const Load* load = loaded ? &hot.loads[i] : nullptr;
-    const double h = options_.dt_s / substeps;
-    for (std::uint32_t k = 0; k < substeps; ++k) integrator_->Step(model, load, h, &state);
-    FinishStep(i, before, share);
   }
   StepFreeBatch(share);
   StepLoadedBatch(share);

@@ -18,6 +18,7 @@
 #include "rigid_body_sim/core/body_store.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/step_policy.h"
 #include "rigid_body_sim/core/step_record.h"
 #include "rigid_body_sim/core/thread_team.h"
 #include "rigid_body_sim/core/wrench_table.h"
@@ -38,11 +39,6 @@ struct WorldOptions {
   // that body alone, so the states are the same for any count.
   std::size_t threads = 1;
 };
-
-// The angle [rad] a substep may turn through the parts of the motion that the
-// scheme or the kicks do not follow exactly (Integrator::RotationErrorRate,
-// HeldLoads::TurnRate).
-constexpr double kMaxSubstepAngle = 0.04;
 
 class World {
  public:

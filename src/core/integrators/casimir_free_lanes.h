@@ -13,23 +13,12 @@
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/step_policy.h"
 
 namespace rigid_body_sim::core {
 
 // Bodies a lane kernel steps at once.
 constexpr std::size_t kLanes = 8;
-
-// Whether a body may take the lanes: dt·|L|·max_k(1/λ_k) <= 1/16, so that
-// every half-angle of its step is below 1/16 (no sub-step of the schemes'
-// compositions is longer than 2 dt, and each turns by at most half its
-// length times |L|·max_k(1/λ_k)), where SinCosSmall's series is exact to
-// round-off. Then |ω|·dt is far below π.
-inline bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double dt_s) {
-  constexpr double kMaxTurn = 1.0 / 16;
-  const double turn_rate = dt_s * model.inverse_principal_moments().maxCoeff();
-  // Squared, to spare the square root; false for a NaN.
-  return turn_rate * turn_rate * state.angular_momentum.squaredNorm() <= kMaxTurn * kMaxTurn;
-}
 
 // What every lane kernel reads of kLanes bodies, in structure-of-arrays form.
 struct LaneBodies {

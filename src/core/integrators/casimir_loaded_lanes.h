@@ -17,21 +17,6 @@
 
 namespace rigid_body_sim::core {
 
-// Whether a loaded body may take the lanes: every half-angle of its step,
-// with L grown by at most dt times the load's torque bound, stays below 1/16
-// (the longest sub-step is 1.36 dt), where the lanes' series are exact to
-// round-off.
-inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, const HeldLoads& loads,
-                            double dt_s) {
-  constexpr double kMaxTurn = 1.0 / 16;
-  constexpr double kLongestSubstep = 1.36;
-  const double turn = kLongestSubstep * dt_s * model.inverse_principal_moments().maxCoeff();
-  const double kick = dt_s * loads.TorqueBound();
-  // Squared, to spare the root: (|L| + kick)² <= 2 |L|² + 2 kick².
-  return turn * turn * 2.0 * (state.angular_momentum.squaredNorm() + kick * kick) <=
-         kMaxTurn * kMaxTurn;
-}
-
 struct LoadedLanes : LaneBodies {
   // Load (HeldLoads) with its body-axes parts in the principal frame P
   // (HeldLoads::InPrincipalFrame): F = F_W + R_WP F_P,
@@ -55,16 +40,6 @@ struct LoadedLanes : LaneBodies {
   // Writes the lane's state to `state`.
   void Store(std::size_t lane, BodyState* state) const;
 };
-
-// Whether a damped body may take the loaded lanes: c·dt <= 1/16 for both
-// rates. The backward inner sub-step then lengthens the rescaled time of its
-// rotation by at most e^{1.71/16} < 1.12 and the kicks' growth by less, well
-// within FitsLoadedLanes' margin (its 1.36 dt against the half-angles' 0.85 dt),
-// and the step is far from TooStiffForComposition.
-inline bool DampingFitsLoadedLanes(const Damping& damping, double dt_s) {
-  constexpr double kMaxDecay = 1.0 / 16;
-  return std::max(damping.linear_per_s, damping.angular_per_s) * dt_s <= kMaxDecay;
-}
 
 // Advances every lane by h; the bodies in use must fit (FitsLoadedLanes,
 // DampingFitsLoadedLanes). Clears body_axes and damped.
