@@ -1,5 +1,5 @@
 // libFuzzer target: the bytes as the YAML text of a ~spawn_body request,
-// through the node's path (SimulationNode::OnSpawnBody): XmlRpcFromYaml,
+// through the node's path (ServiceFront::OnSpawnBody): XmlRpcFromYaml,
 // ParseBodyEntry, then World::AddBody into a world that already has a body.
 //
 // A SceneError or any std::exception is a correct answer (the node sends

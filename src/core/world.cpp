@@ -97,7 +97,7 @@ BodyId World::AddBody(BodyModel model, const BodyState& initial_state,
   PrepareBody(index);
   // Sums again, with gravity on the new body.
   wrenches_.AddBody(id, bodies_.hot().models[index].particle_count());
-  for (BodyListener* listener : listeners_) listener->OnBodyAdded(id);
+  for (BodyListener* listener : listeners_) listener->OnBodyAdded(*this, id);
   return id;
 }
 
@@ -106,7 +106,7 @@ void World::RemoveBody(BodyId id) {
   if (bodies_.hot().faults[index] != BodyFault::kNone) --frozen_count_;
   bodies_.Remove(id);
   wrenches_.RemoveBody(id);  // sums again: the loads moved with their bodies
-  for (BodyListener* listener : listeners_) listener->OnBodyRemoved(id);
+  for (BodyListener* listener : listeners_) listener->OnBodyRemoved(*this, id);
 }
 
 void World::RemoveListener(BodyListener* listener) {

@@ -45,8 +45,7 @@ void StatePublisher::Advertise(ros::NodeHandle& nh, const std::string& topic,
 
 StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings,
                                const core::World& world, BodyTopics::WrenchCallback on_body_wrench)
-    : world_(world),
-      world_frame_(settings.world_frame),
+    : world_frame_(settings.world_frame),
       publish_clock_(settings.publish_clock && settings.shard.index == 0),  // one /clock
       publish_tf_(settings.publish_tf),
       particle_marker_diameter_m_(settings.particle_marker_diameter_m),
@@ -58,16 +57,16 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
   Advertise<BodyStateArray>(private_nh, "bodies", kStateQueueSize, &bodies_);
   Advertise<visualization_msgs::MarkerArray>(private_nh, "particles", kStateQueueSize, &particles_);
   if (publish_clock_) clock_ = root.advertise<rosgraph_msgs::Clock>("/clock", kStateQueueSize);
-  for (std::size_t index = 0; index < world.size(); ++index) OnBodyAdded(world.id(index));
+  for (std::size_t index = 0; index < world.size(); ++index) OnBodyAdded(world, world.id(index));
 }
 
-void StatePublisher::OnBodyAdded(core::BodyId id) {
-  const std::string& name = world_.model(id).name();
+void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
+  const std::string& name = world.model(id).name();
   per_body_.Insert(id, {BodyFrameId(tf_prefix_, name), next_marker_id_++});
   body_topics_.Add(id, name);
 }
 
-void StatePublisher::OnBodyRemoved(core::BodyId id) {
+void StatePublisher::OnBodyRemoved(const core::World& /*world*/, core::BodyId id) {
   deleted_marker_ids_.push_back(per_body_.at(id).marker_id);
   per_body_.Erase(id);
   body_topics_.Remove(id);

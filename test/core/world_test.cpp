@@ -163,16 +163,16 @@ TEST(World, AStaleIdIsCaughtNeverTakenForTheBodyInItsSlot) {
 
 TEST(World, ListenersHearOfEveryAddAndRemoveAfterTheFact) {
   struct Recorder : BodyListener {
-    const World* world = nullptr;
     std::vector<std::string> heard;
-    void OnBodyAdded(BodyId id) override { heard.push_back("+" + world->model(id).name()); }
-    void OnBodyRemoved(BodyId id) override {
-      heard.push_back(world->IndexOf(id) ? "-still there" : "-gone");
+    void OnBodyAdded(const World& world, BodyId id) override {
+      heard.push_back("+" + world.model(id).name());
+    }
+    void OnBodyRemoved(const World& world, BodyId id) override {
+      heard.push_back(world.IndexOf(id) ? "-still there" : "-gone");
     }
   };
   World world = MakeWorld(WorldOptions{});
   Recorder recorder;
-  recorder.world = &world;
   world.AddListener(&recorder);
   const BodyId late = world.AddBody(BodyModel("late", {{1.0, {0, 0, 0}}}), {}, {});
   EXPECT_THROW(world.AddBody(BodyModel("late", {{1.0, {0, 0, 0}}}), {}, {}),

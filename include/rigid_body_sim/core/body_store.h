@@ -59,16 +59,6 @@ struct BodyColdColumns {
   }
 };
 
-// Told of every body added to or removed from a World, after the fact.
-class BodyListener {
- public:
-  virtual ~BodyListener() = default;
-  // `id` now lives, at the last index.
-  virtual void OnBodyAdded(BodyId id) = 0;
-  // `id` is gone; the bodies after it moved down by one.
-  virtual void OnBodyRemoved(BodyId id) = 0;
-};
-
 class BodyStore {
  public:
   std::size_t size() const { return hot_.models.size(); }

@@ -40,6 +40,19 @@ struct WorldOptions {
   std::size_t threads = 1;
 };
 
+class World;
+
+// Told of every body added to or removed from a World, after the fact: the
+// one notification every per-body table outside the World follows.
+class BodyListener {
+ public:
+  virtual ~BodyListener() = default;
+  // `id` now lives in `world`, at the last index.
+  virtual void OnBodyAdded(const World& world, BodyId id) = 0;
+  // `id` is gone from `world`; the bodies after it moved down by one.
+  virtual void OnBodyRemoved(const World& world, BodyId id) = 0;
+};
+
 class World {
  public:
   // Throws std::invalid_argument on an unknown integrator, dt <= 0, threads

@@ -29,8 +29,8 @@ class StatePublisher : public core::BodyListener {
   // From the next Publish on.
   void SetPublishTf(bool publish_tf) { publish_tf_ = publish_tf; }
 
-  void OnBodyAdded(core::BodyId id) override;
-  void OnBodyRemoved(core::BodyId id) override;
+  void OnBodyAdded(const core::World& world, core::BodyId id) override;
+  void OnBodyRemoved(const core::World& world, core::BodyId id) override;
 
   const BodyTopics& body_topics() const { return body_topics_; }
   // Subscribers connected to ~bodies.
@@ -49,7 +49,6 @@ class StatePublisher : public core::BodyListener {
   void PublishBodies(const core::World& world, const ros::Time& stamp);
   void PublishParticles(const core::World& world, const ros::Time& stamp);
 
-  const core::World& world_;
   const std::string world_frame_;
   const bool publish_clock_;
   bool publish_tf_;
