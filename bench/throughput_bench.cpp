@@ -39,7 +39,7 @@ World MakeWorld(const std::string& integrator, int bodies, bool forced,
   if (forced) {
     for (int i = 0; i < bodies; ++i) {
       ParticleWrench push;
-      push.body = i;
+      push.body = world.id(i);
       push.particle = i % 8;
       push.force = {0.1, -0.2, 0.05};
       push.axes = i % 2 ? WrenchAxes::kBody : WrenchAxes::kWorld;
@@ -69,7 +69,7 @@ void TimeSteps(World* world, benchmark::State* state) {
     benchmark::ClobberMemory();
     if (++steps % kStepsPerRestart == 0) {
       state->PauseTiming();
-      for (std::size_t i = 0; i < first.size(); ++i) world->SetBodyState(i, first[i]);
+      for (std::size_t i = 0; i < first.size(); ++i) world->SetBodyState(world->id(i), first[i]);
       state->ResumeTiming();
     }
   }
@@ -138,7 +138,7 @@ void BM_WorldStepLoaded(benchmark::State& state, LoadKind kind) {
   if (kind != LoadKind::kGravity) {
     for (int i = 0; i < bodies; ++i) {
       ParticleWrench push;
-      push.body = i;
+      push.body = world.id(i);
       push.particle = i % 8;
       push.force = {0.1, -0.2, 0.05};
       push.axes = kind == LoadKind::kBodyForce ? WrenchAxes::kBody : WrenchAxes::kWorld;
@@ -210,7 +210,7 @@ void BM_WorstStepAtMaxSubsteps(benchmark::State& state) {
   }
   World world(models, states, WorldOptions{});
   ParticleWrench push;
-  push.body = bodies;
+  push.body = world.id(bodies);
   push.force = {0.1, -0.2, 0.05};
   push.axes = WrenchAxes::kBody;
   world.HoldWrench(push);
@@ -225,7 +225,7 @@ void BM_WorstStepAtMaxSubsteps(benchmark::State& state) {
     if (n >= 0.9 * cap && n > 0) break;
     (n == 0 ? high : low) = 0.5 * (low + high);
   }
-  world.SetBodyState(bodies, fast);
+  world.SetBodyState(world.id(bodies), fast);
   std::uint32_t substeps = 0;
   for (auto _ : state) {
     world.Step();

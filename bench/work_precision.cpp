@@ -87,7 +87,7 @@ World MakeSceneWorld(const Scene& scene, const std::string& integrator, double d
   if (!scene.constant_couple.isZero()) {
     for (int i = 0; i < bodies; ++i) {
       ParticleWrench couple;
-      couple.body = i;
+      couple.body = world.id(i);
       couple.couple = scene.constant_couple;
       world.HoldWrench(couple);
     }

@@ -28,6 +28,11 @@ add_library(rigid_body_sim_ros
   src/ros/lockstep_publishers.cpp
   src/ros/state_hash_worker.cpp
   src/ros/request_lane.cpp
+  src/ros/step_lattice.cpp
+  src/ros/lockstep_driver.cpp
+  src/ros/world_editor.cpp
+  src/ros/service_front.cpp
+  src/ros/runtime_settings.cpp
   src/ros/simulation_node.cpp)
 # The ROS headers come from include_directories() above here and from
 # catkin_package() for dependent packages: no absolute path in the interface.

@@ -1,5 +1,5 @@
 // libFuzzer target: the bytes as the YAML text of a ~spawn_body request,
-// through the node's path (SimulationNode::OnSpawnBody): XmlRpcFromYaml,
+// through the node's path (ServiceFront::OnSpawnBody): XmlRpcFromYaml,
 // ParseBodyEntry, then World::AddBody into a world that already has a body.
 //
 // A SceneError or any std::exception is a correct answer (the node sends
@@ -99,7 +99,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   if (world->size() != before + 1 || !Finite(world->state(before))) Fail("finite state in the world");
-  world->RemoveBody(before);
+  world->RemoveBody(world->id(before));
   if (world->size() != before) Fail("the world back to its bodies");
   return 0;
 }

@@ -256,13 +256,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                  setup.start_stamp.sec, setup.start_stamp.nsec);
   }
 
-  rigid_body_sim::WrenchFrames frames;
-  frames.world_frame = setup.world_frame;
-  frames.tf_prefix = setup.tf_prefix;
-  for (std::size_t i = 0; i < world.size(); ++i) {
-    frames.body_index.emplace(world.model(i).name(), i);
-    frames.particle_counts.push_back(world.model(i).particle_count());
-  }
+  const rigid_body_sim::WrenchFrames frames =
+      rigid_body_sim::MakeWrenchFrames(world, setup.world_frame, setup.tf_prefix);
 
   CheckWorld(world, "construction");
   int ops = 0;
@@ -299,10 +294,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       if (converted.accepted()) {
         const core::ParticleWrench& w = converted.wrench;
-        if (w.body >= world.size() || w.particle >= world.model(w.body).particle_count() ||
+        if (!world.IndexOf(w.body) || w.particle >= world.model(w.body).particle_count() ||
             !w.force.allFinite() || !w.couple.allFinite() || !std::isfinite(w.start_s)) {
-          std::fprintf(stderr, "wrench_fuzzer: accepted an invalid wrench (body %zu particle %zu)\n",
-                       w.body, w.particle);
+          std::fprintf(stderr, "wrench_fuzzer: accepted an invalid wrench (body %u.%u particle %zu)\n",
+                       w.body.slot, w.body.generation, w.particle);
           std::abort();
         }
         world.HoldWrench(w);
@@ -348,7 +343,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       }
       // The node refuses it, and says why.
       if (!state || world.SubstepsFor(body, *state) == 0) continue;
-      world.SetBodyState(body, *state);
+      world.SetBodyState(world.id(body), *state);
       CheckWorld(world, "SetBodyState");
     }
   }

@@ -17,42 +17,45 @@ double RelativeChange(double value, double reference) {
 
 ConservationMonitor::ConservationMonitor(const World& world) { RebaseAll(world); }
 
+ConservationMonitor::Reference ConservationMonitor::ReferenceOf(const World& world,
+                                                                std::size_t index) const {
+  // Damping is a load that never goes.
+  return {Of(world, index), world.properties(index).has_damping()};
+}
+
 void ConservationMonitor::RebaseAll(const World& world) {
-  references_.resize(world.size());
-  loaded_.resize(world.size());
-  for (std::size_t body = 0; body < world.size(); ++body) {
-    Rebase(world, body);
-    loaded_[body] = world.properties(body).has_damping();  // damping is a load that never goes
+  for (std::size_t index = 0; index < world.size(); ++index) {
+    references_.Insert(world.id(index), ReferenceOf(world, index));
   }
   sweep_cursor_ = 0;
   sweep_ = Largest{};
   last_sweep_ = Largest{};
 }
 
-void ConservationMonitor::Rebase(const World& world, std::size_t body) {
-  references_[body] = Of(world, body);
+void ConservationMonitor::Rebase(const World& world, BodyId body) {
+  const std::optional<std::size_t> index = world.IndexOf(body);
+  if (index) references_.at(body).invariants = Of(world, *index);
 }
 
 std::optional<ConservationMonitor::Drift> ConservationMonitor::Measure(const World& world,
-                                                                       std::size_t body) const {
-  if (loaded_[body]) return std::nullopt;
-  const Invariants now = Of(world, body);
+                                                                       std::size_t index) const {
+  const Reference& reference = references_.at(world.id(index));
+  if (reference.loaded) return std::nullopt;
+  const Invariants now = Of(world, index);
   Drift drift;
   drift.angular_momentum_norm =
-      RelativeChange(now.angular_momentum_norm, references_[body].angular_momentum_norm);
+      RelativeChange(now.angular_momentum_norm, reference.invariants.angular_momentum_norm);
   drift.rotational_energy =
-      RelativeChange(now.rotational_energy, references_[body].rotational_energy);
+      RelativeChange(now.rotational_energy, reference.invariants.rotational_energy);
   return drift;
 }
 
-void ConservationMonitor::AddBody(const World& world) {
-  references_.push_back(Of(world, world.size() - 1));
-  loaded_.push_back(world.properties(world.size() - 1).has_damping());
+void ConservationMonitor::AddBody(const World& world, BodyId body) {
+  references_.Insert(body, ReferenceOf(world, world.IndexOf(body).value()));
 }
 
-void ConservationMonitor::RemoveBody(std::size_t body) {
-  references_.erase(references_.begin() + static_cast<std::ptrdiff_t>(body));
-  loaded_.erase(loaded_.begin() + static_cast<std::ptrdiff_t>(body));
+void ConservationMonitor::RemoveBody(BodyId body) {
+  references_.Erase(body);
   sweep_cursor_ = 0;
   sweep_ = Largest{};
   last_sweep_ = Largest{};
@@ -82,9 +85,9 @@ void ConservationMonitor::Sweep(const World& world, std::size_t count) {
   }
 }
 
-ConservationMonitor::Invariants ConservationMonitor::Of(const World& world, std::size_t body) {
-  const BodyModel& model = world.model(body);
-  const BodyState& state = world.state(body);
+ConservationMonitor::Invariants ConservationMonitor::Of(const World& world, std::size_t index) {
+  const BodyModel& model = world.model(index);
+  const BodyState& state = world.state(index);
   Invariants invariants;
   invariants.angular_momentum_norm = state.angular_momentum.norm();
   invariants.rotational_energy = KineticEnergy(model, state) -

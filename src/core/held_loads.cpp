@@ -75,11 +75,11 @@ void HeldLoads::SetDamping(double linear_per_s, double angular_per_s) {
   has_damping_ = linear_per_s > 0.0 || angular_per_s > 0.0;
 }
 
-double HeldLoads::DroppedTorque(const Eigen::Matrix3d& rotation) const {
+double HeldLoads::DroppedTorque(const Eigen::Matrix3d& R_WB) const {
   if (!projects_torque_ || !has_torque_) return 0.0;
   const Eigen::Vector3d torque_body =
-      torque_body_ + rotation.transpose() * torque_world_ +
-      rotation.transpose() * VeeOfAntisymmetricPart(force_moment_ * rotation.transpose());
+      torque_body_ + R_WB.transpose() * torque_world_ +
+      R_WB.transpose() * VeeOfAntisymmetricPart(force_moment_ * R_WB.transpose());
   return (torque_body - torque_projector_ * torque_body).norm();
 }
 
@@ -101,10 +101,10 @@ const HeldLoads::PrincipalParts& HeldLoads::NewPrincipalParts(
   return principal_parts_;
 }
 
-double HeldLoads::TurnRate(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& omega) const {
+double HeldLoads::TurnRate(const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& omega) const {
   double rate = 0.0;
   const double force_bound = force_world_.norm() + force_body_.norm();
-  if (force_bound > 0.0) rate = omega.cross(rotation * force_body_).norm() / force_bound;
+  if (force_bound > 0.0) rate = omega.cross(R_WB * force_body_).norm() / force_bound;
   const double torque_bound = TorqueBound();
   if (torque_bound > 0.0) {
     // Ȧ = ω̃ A: d(A τ̄)/dt = ω × A τ̄, and d vee(C Aᵀ − A Cᵀ)/dt = vee(Y − Yᵀ) with
@@ -112,21 +112,21 @@ double HeldLoads::TurnRate(const Eigen::Matrix3d& rotation, const Eigen::Vector3
     Eigen::Matrix3d omega_hat;
     omega_hat << 0.0, -omega.z(), omega.y(), omega.z(), 0.0, -omega.x(), -omega.y(), omega.x(), 0.0;
     const Eigen::Vector3d torque_rate =
-        omega.cross(rotation * torque_body_) +
-        VeeOfAntisymmetricPart(-(force_moment_ * rotation.transpose()) * omega_hat);
+        omega.cross(R_WB * torque_body_) +
+        VeeOfAntisymmetricPart(-(force_moment_ * R_WB.transpose()) * omega_hat);
     rate = std::max(rate, torque_rate.norm() / torque_bound);
   }
   return rate;
 }
 
-Wrench HeldLoads::At(double /*time_in_step_s*/, const Eigen::Matrix3d& rotation) const {
+Wrench HeldLoads::At(double /*time_in_step_s*/, const Eigen::Matrix3d& R_WB) const {
   Wrench wrench;
-  wrench.force = force_world_ + rotation * force_body_;
+  wrench.force = force_world_ + R_WB * force_body_;
   if (!has_torque_) return wrench;
-  wrench.torque = torque_world_ + rotation * torque_body_ +
-                  VeeOfAntisymmetricPart(force_moment_ * rotation.transpose());
+  wrench.torque = torque_world_ + R_WB * torque_body_ +
+                  VeeOfAntisymmetricPart(force_moment_ * R_WB.transpose());
   if (projects_torque_) {
-    wrench.torque = rotation * (torque_projector_ * (rotation.transpose() * wrench.torque));
+    wrench.torque = R_WB * (torque_projector_ * (R_WB.transpose() * wrench.torque));
   }
   return wrench;
 }

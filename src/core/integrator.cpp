@@ -23,17 +23,14 @@ std::unique_ptr<Integrator> Make() {
 
 }  // namespace
 
-void Integrator::StepFree(const std::vector<BodyModel>& models,
-                          const std::vector<std::size_t>& bodies, double dt_s,
-                          std::vector<BodyState>* states) const {
-  for (const std::size_t body : bodies) Step(models[body], nullptr, dt_s, &(*states)[body]);
+void Integrator::StepFree(const BodyBatch& batch, double dt_s) const {
+  for (const std::size_t body : batch) Step(batch.models[body], nullptr, dt_s, &batch.states[body]);
 }
 
-void Integrator::StepLoaded(const std::vector<BodyModel>& models,
-                            const std::vector<std::size_t>& bodies,
-                            const std::vector<HeldLoads>& loads, double dt_s,
-                            std::vector<BodyState>* states) const {
-  for (const std::size_t body : bodies) Step(models[body], &loads[body], dt_s, &(*states)[body]);
+void Integrator::StepLoaded(const BodyBatch& batch, double dt_s) const {
+  for (const std::size_t body : batch) {
+    Step(batch.models[body], &batch.loads[body], dt_s, &batch.states[body]);
+  }
 }
 
 double Integrator::RotationErrorRate(const BodyModel& model, const BodyState& state,

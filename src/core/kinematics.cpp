@@ -11,8 +11,8 @@ Eigen::Vector3d AngularVelocity(const BodyModel& model, const BodyState& state) 
 }
 
 Eigen::Matrix3d WorldInertia(const BodyModel& model, const BodyState& state) {
-  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
-  return rotation * model.inertia() * rotation.transpose();
+  const Eigen::Matrix3d R_WB = state.orientation.toRotationMatrix();
+  return R_WB * model.inertia() * R_WB.transpose();
 }
 
 double KineticEnergy(const BodyModel& model, const BodyState& state) {
@@ -22,23 +22,23 @@ double KineticEnergy(const BodyModel& model, const BodyState& state) {
 
 void ParticlePositions(const BodyModel& model, const BodyState& state,
                        std::vector<Eigen::Vector3d>* positions) {
-  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
+  const Eigen::Matrix3d R_WB = state.orientation.toRotationMatrix();
   const std::vector<Eigen::Vector3d>& offsets = model.particle_offsets();
   positions->resize(offsets.size());
   for (std::size_t i = 0; i < offsets.size(); ++i) {
-    (*positions)[i] = state.position + rotation * offsets[i];
+    (*positions)[i] = state.position + R_WB * offsets[i];
   }
 }
 
 void ParticleVelocities(const BodyModel& model, const BodyState& state,
                         std::vector<Eigen::Vector3d>* velocities) {
-  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
+  const Eigen::Matrix3d R_WB = state.orientation.toRotationMatrix();
   const Eigen::Vector3d velocity = LinearVelocity(model, state);
   const Eigen::Vector3d omega = AngularVelocity(model, state);
   const std::vector<Eigen::Vector3d>& offsets = model.particle_offsets();
   velocities->resize(offsets.size());
   for (std::size_t i = 0; i < offsets.size(); ++i) {
-    (*velocities)[i] = velocity + omega.cross(rotation * offsets[i]);
+    (*velocities)[i] = velocity + omega.cross(R_WB * offsets[i]);
   }
 }
 
@@ -59,9 +59,9 @@ BodyState StateFromTwist(const BodyModel& model, const Eigen::Vector3d& position
   state.position = position;
   state.orientation = orientation.normalized();
   state.linear_momentum = model.mass() * linear_velocity;
-  const Eigen::Matrix3d rotation = state.orientation.toRotationMatrix();
+  const Eigen::Matrix3d R_WB = state.orientation.toRotationMatrix();
   // I ω lies in the range of I by construction, so no projection is needed.
-  state.angular_momentum = rotation * (model.inertia() * (rotation.transpose() * angular_velocity));
+  state.angular_momentum = R_WB * (model.inertia() * (R_WB.transpose() * angular_velocity));
   return state;
 }
 

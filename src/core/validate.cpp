@@ -9,13 +9,10 @@
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/check.h"
 #include "rigid_body_sim/core/format_number.h"
-#include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/core/step_policy.h"
 
 namespace rigid_body_sim::core {
 namespace {
-
-// World::SubstepsFor's bound on every rate it weighs: ∛2·|L|·max_k(1/λ_k).
-const double kRateBoundFactor = std::cbrt(2.0);
 
 std::string Entry(std::size_t index, const std::string& name) {
   return "bodies[" + std::to_string(index) + "] (name '" + name + "')";
@@ -41,23 +38,6 @@ std::string PropertiesError(const BodyProperties& properties) {
   std::string error = damping_error("linear_damping", properties.linear_damping_per_s);
   if (error.empty()) error = damping_error("angular_damping", properties.angular_damping_per_s);
   return error;
-}
-
-// Whether a body that holds no wrench can step from `state` within
-// world.max_substeps: World::SubstepsFor without a load, written out so that
-// a scene is checked without a World (World::CheckBody compares the two).
-bool StepsWithinMaxSubsteps(const BodyModel& model, const BodyState& state,
-                            const Integrator& integrator, const WorldDef& world) {
-  const double dt = world.dt_s;
-  const double turn_bound = dt * kRateBoundFactor * model.inverse_principal_moments().maxCoeff();
-  if (turn_bound * turn_bound * state.angular_momentum.squaredNorm() <=
-      kMaxSubstepAngle * kMaxSubstepAngle) {
-    return true;
-  }
-  const double cap = world.max_substeps;
-  const double rotation_substeps =
-      std::ceil(dt * integrator.RotationErrorRate(model, state, dt) / kMaxSubstepAngle);
-  return rotation_substeps <= cap;  // false for a NaN rate too
 }
 
 }  // namespace
@@ -163,8 +143,9 @@ void CheckBodyDef(const BodyDef& def, std::size_t index, const WorldDef& world,
   const std::string properties_error = PropertiesError(def.properties);
   RBS_CHECK(properties_error.empty(), Entry(index, name) + ": " + properties_error);
   BodyFault fault = CheckState(def.model, def.initial_state);
-  if (fault == BodyFault::kNone &&
-      !StepsWithinMaxSubsteps(def.model, def.initial_state, integrator, world)) {
+  // A new body holds no wrench yet: World::Step's count of a free body's substeps.
+  if (fault == BodyFault::kNone && SubstepsFor(integrator, def.model, def.initial_state, nullptr,
+                                               world.dt_s, world.max_substeps) == 0) {
     fault = BodyFault::kSpinAliased;
   }
   RBS_CHECK(fault == BodyFault::kNone,

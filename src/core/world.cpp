@@ -5,8 +5,8 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "rigid_body_sim/core/check.h"
 #include "rigid_body_sim/core/kinematics.h"
+#include "rigid_body_sim/core/step_policy.h"
 #include "rigid_body_sim/core/validate.h"
 
 namespace rigid_body_sim::core {
@@ -19,11 +19,6 @@ constexpr double kTimeToleranceInSteps = 1e-3;
 // A couple smaller than this along a null axis is round-off, not a dropped load.
 constexpr double kDroppedCoupleTolerance_Nm = 1e-9;
 
-// Every rate SubstepsFor weighs is at most this times |L|·max_k(1/λ_k) (the
-// Casimir rate ∛(αβ(α + β)) <= ∛2·max(α, β)), so a body below the bound
-// needs no closer look.
-const double kRateBoundFactor = std::cbrt(2.0);
-
 // Bodies handed to Integrator::StepFree or StepLoaded at a time: small
 // enough that their states are still in cache when they are checked.
 constexpr std::size_t kBatch = 64;
@@ -33,39 +28,23 @@ constexpr std::size_t kBatch = 64;
 // atomic add), short against a step of a scene large enough to want threads.
 constexpr std::size_t kBodiesPerBlock = 1024;
 
-std::vector<std::size_t> ParticleCounts(const std::vector<BodyModel>& models) {
-  std::vector<std::size_t> counts;
-  counts.reserve(models.size());
-  for (const BodyModel& model : models) counts.push_back(model.particle_count());
-  return counts;
-}
-
 }  // namespace
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
              const WorldOptions& options, std::vector<BodyProperties> properties)
-    : models_(std::move(models)),
-      initial_states_(std::move(initial_states)),
-      states_(initial_states_),
-      properties_(properties.empty() ? std::vector<BodyProperties>(models_.size())
-                                     : std::move(properties)),
-      options_(options),
-      integrator_(MakeIntegrator(options.integrator)),
-      wrenches_(ParticleCounts(models_)),
-      loads_(models_.size()),
-      loaded_(models_.size(), 0),
-      faults_(models_.size(), BodyFault::kNone),
-      one_step_momentum_sq_(models_.size(), 0.0) {
+    : options_(options), integrator_(MakeIntegrator(options.integrator)) {
   CheckWorldDef(options_);
-  if (states_.size() != models_.size() || properties_.size() != models_.size()) {
+  if (properties.empty()) properties.resize(models.size());
+  if (initial_states.size() != models.size() || properties.size() != models.size()) {
     throw std::invalid_argument("one initial state and one set of properties per body is required");
   }
-  for (std::size_t i = 0; i < models_.size(); ++i) {
-    CheckBody(i);
-    PrepareBody(i);
-    body_index_.emplace(models_[i].name(), i);
-  }
   has_gravity_ = !options_.gravity.isZero(0.0);
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    CheckBody(i, models[i], initial_states[i], properties[i]);
+    const BodyId id = bodies_.Add(std::move(models[i]), initial_states[i], properties[i]);
+    PrepareBody(i);
+    wrenches_.AddBody(id, bodies_.hot().models[i].particle_count());
+  }
   shares_.resize(options_.threads);
   for (Share& share : shares_) {
     share.free_batch.reserve(kBatch);
@@ -76,135 +55,73 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
   team_ = std::make_unique<ThreadTeam>(options_.threads);
 }
 
-void World::CheckBody(std::size_t i) const {
-  const auto first = body_index_.find(models_[i].name());
+void World::CheckBody(std::size_t index, const BodyModel& model, const BodyState& initial_state,
+                      const BodyProperties& properties) const {
   std::optional<std::size_t> name_owner;
-  if (first != body_index_.end()) name_owner = first->second;
-  CheckBodyDef(BodyDef{models_[i], states_[i], properties_[i]}, i, options_, *integrator_,
+  if (const std::optional<BodyId> first = bodies_.Find(model.name())) {
+    name_owner = bodies_.CheckedIndex(*first);
+  }
+  CheckBodyDef(BodyDef{model, initial_state, properties}, index, options_, *integrator_,
                name_owner);
-  RBS_DCHECK(SubstepsFor(i, states_[i]) != 0);  // the validator's count is SubstepsFor's
 }
 
-void World::PrepareBody(std::size_t i) {
-  if (!models_[i].is_full_rank()) loads_[i].SetTorqueProjector(models_[i].range_projector());
-  const BodyProperties& properties = properties_[i];
-  loads_[i].SetDamping(properties.linear_damping_per_s, properties.angular_damping_per_s);
-  const double turn_bound =
-      options_.dt_s * kRateBoundFactor * models_[i].inverse_principal_moments().maxCoeff();
-  const double reach = kMaxSubstepAngle / turn_bound;  // inf for a point mass
-  one_step_momentum_sq_[i] = reach * reach;
+void World::PrepareBody(std::size_t index) {
+  BodyHotColumns& hot = bodies_.hot();
+  const BodyModel& model = hot.models[index];
+  if (!model.is_full_rank()) hot.loads[index].SetTorqueProjector(model.range_projector());
+  const BodyProperties& properties = bodies_.cold().properties[index];
+  hot.loads[index].SetDamping(properties.linear_damping_per_s, properties.angular_damping_per_s);
+  hot.one_step_momentum_sq[index] = OneStepMomentumSq(model, options_.dt_s);
 }
 
-void World::AddBody(BodyModel model, const BodyState& initial_state,
-                    const BodyProperties& properties) {
-  models_.push_back(std::move(model));
-  initial_states_.push_back(initial_state);
-  states_.push_back(initial_state);
-  properties_.push_back(properties);
-  loads_.emplace_back();
-  loaded_.push_back(0);
-  faults_.push_back(BodyFault::kNone);
-  one_step_momentum_sq_.push_back(0.0);
-  const std::size_t body = models_.size() - 1;
-  try {
-    CheckBody(body);
-    PrepareBody(body);
-  } catch (...) {
-    RemoveLast();
-    throw;
-  }
-  body_index_.emplace(models_[body].name(), body);
-  wrenches_.AddBody(models_[body].particle_count());  // sums again, with gravity on the new body
+BodyId World::AddBody(BodyModel model, const BodyState& initial_state,
+                      const BodyProperties& properties) {
+  const std::size_t index = size();
+  CheckBody(index, model, initial_state, properties);
+  const BodyId id = bodies_.Add(std::move(model), initial_state, properties);
+  PrepareBody(index);
+  // Sums again, with gravity on the new body.
+  wrenches_.AddBody(id, bodies_.hot().models[index].particle_count());
+  for (BodyListener* listener : listeners_) listener->OnBodyAdded(*this, id);
+  return id;
 }
 
-void World::RemoveLast() {
-  models_.pop_back();
-  initial_states_.pop_back();
-  states_.pop_back();
-  properties_.pop_back();
-  loads_.pop_back();
-  loaded_.pop_back();
-  faults_.pop_back();
-  one_step_momentum_sq_.pop_back();
+void World::RemoveBody(BodyId id) {
+  const std::size_t index = bodies_.CheckedIndex(id);
+  if (bodies_.hot().faults[index] != BodyFault::kNone) --frozen_count_;
+  bodies_.Remove(id);
+  wrenches_.RemoveBody(id);  // sums again: the loads moved with their bodies
+  for (BodyListener* listener : listeners_) listener->OnBodyRemoved(*this, id);
 }
 
-void World::RemoveBody(std::size_t body) {
-  const auto at = [body](auto& per_body) {
-    per_body.erase(per_body.begin() + static_cast<std::ptrdiff_t>(body));
-  };
-  if (faults_[body] != BodyFault::kNone) --frozen_count_;
-  body_index_.erase(models_[body].name());
-  for (auto& [name, index] : body_index_) {
-    if (index > body) --index;
-  }
-  at(models_);
-  at(initial_states_);
-  at(states_);
-  at(properties_);
-  at(loads_);
-  at(loaded_);
-  at(faults_);
-  at(one_step_momentum_sq_);
-  if (body < step_records_.size()) at(step_records_);
-  if (body < step_record_valid_.size()) at(step_record_valid_);
-  wrenches_.RemoveBody(body);  // sums again: loads_ moved with their bodies
+void World::RemoveListener(BodyListener* listener) {
+  listeners_.erase(std::remove(listeners_.begin(), listeners_.end(), listener), listeners_.end());
 }
 
-std::optional<std::size_t> World::FindBody(const std::string& name) const {
-  const auto body = body_index_.find(name);
-  if (body == body_index_.end()) return std::nullopt;
-  return body->second;
+std::uint32_t World::SubstepsFor(std::size_t index, const BodyState& state) const {
+  const BodyHotColumns& hot = bodies_.hot();
+  return SubstepsFor(hot.models[index], hot.loaded[index] ? &hot.loads[index] : nullptr, state);
 }
 
-std::uint32_t World::SubstepsFor(std::size_t body, const BodyState& state) const {
-  const BodyModel& model = models_[body];
-  const HeldLoads* load = loaded_[body] ? &loads_[body] : nullptr;
-  const double dt = options_.dt_s;
-  // Below the bound on every rate, one step (squared, to spare the root).
-  const double turn_bound = dt * kRateBoundFactor * model.inverse_principal_moments().maxCoeff();
-  const double reach =
-      load != nullptr ? state.angular_momentum.norm() + dt * load->TorqueBound() : 0.0;
-  if (load != nullptr ? turn_bound * reach <= kMaxSubstepAngle
-                      : turn_bound * turn_bound * state.angular_momentum.squaredNorm() <=
-                            kMaxSubstepAngle * kMaxSubstepAngle) {
-    return 1;
-  }
-  double rotation_rate = integrator_->RotationErrorRate(model, state, dt);
-  double load_rate = 0.0;
-  if (load != nullptr) {
-    // The kick changes L within the step, so the rates at its end count too.
-    const Eigen::Matrix3d a = state.orientation.toRotationMatrix();
-    BodyState kicked = state;
-    kicked.angular_momentum += dt * load->At(0.0, a).torque;
-    rotation_rate = std::max(rotation_rate, integrator_->RotationErrorRate(model, kicked, dt));
-    load_rate = std::max(load->TurnRate(a, AngularVelocity(model, a, state.angular_momentum)),
-                         load->TurnRate(a, AngularVelocity(model, a, kicked.angular_momentum)));
-  }
-  const double cap = options_.max_substeps;
-  const double rotation_substeps = std::ceil(dt * rotation_rate / kMaxSubstepAngle);
-  if (!(rotation_substeps <= cap)) return 0;  // a NaN rate too
-  // A load turning faster than the cap can follow (a force off the axis of a
-  // needle spun up about it) is aliased however often it is sampled: it
-  // is sampled at the rotation's substeps alone, and freezes nothing. Its
-  // impulse per step is still bounded by dt times the load's size.
-  const double load_substeps = std::ceil(dt * load_rate / kMaxSubstepAngle);
-  const double substeps =
-      load_substeps <= cap ? std::max(rotation_substeps, load_substeps) : rotation_substeps;
-  return std::max<std::uint32_t>(1, static_cast<std::uint32_t>(substeps));
+std::uint32_t World::SubstepsFor(const BodyModel& model, const HeldLoads* load,
+                                 const BodyState& state) const {
+  return core::SubstepsFor(*integrator_, model, state, load, options_.dt_s, options_.max_substeps);
 }
 
 void World::Step() {
+  BodyHotColumns& hot = bodies_.hot();
   const bool loads_changed =
       wrenches_.Reduce(time(), options_.wrench_timeout_s, kTimeToleranceInSteps * options_.dt_s,
-                       models_, &loads_, &loaded_);
+                       bodies_, &hot.loads, &hot.loaded);
   if (loads_changed) {
-    for (std::size_t i = 0; i < models_.size(); ++i) {
-      const BodyProperties& properties = properties_[i];
-      if (has_gravity_ && properties.gravity_scale != 0.0) {
-        loads_[i].AddCentralForce(properties.gravity_scale * models_[i].mass() * options_.gravity);
-        loaded_[i] = 1;
+    const std::vector<BodyProperties>& properties = bodies_.cold().properties;
+    for (std::size_t i = 0; i < size(); ++i) {
+      if (has_gravity_ && properties[i].gravity_scale != 0.0) {
+        hot.loads[i].AddCentralForce(properties[i].gravity_scale * hot.models[i].mass() *
+                                     options_.gravity);
+        hot.loaded[i] = 1;
       }
-      if (properties.has_damping()) loaded_[i] = 1;
+      if (properties[i].has_damping()) hot.loaded[i] = 1;
     }
   }
   last_step_recorded_ = record_next_step_;
@@ -218,7 +135,7 @@ void World::Step() {
   auto step_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
     StepBlock(begin, end, &shares_[member]);
   };
-  team_->ForBlocks(models_.size(), kBodiesPerBlock, step_block);
+  team_->ForBlocks(size(), kBodiesPerBlock, step_block);
   last_step_substeps_max_ = 1;
   for (const Share& share : shares_) {
     frozen_count_ += share.frozen;
@@ -229,68 +146,80 @@ void World::Step() {
 }
 
 void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
+  BodyHotColumns& hot = bodies_.hot();
+  const Integrator& integrator = *integrator_;
+  const double dt_s = options_.dt_s;
+  const std::uint32_t max_substeps = options_.max_substeps;
   for (std::size_t i = begin; i < end; ++i) {
-    if (faults_[i] != BodyFault::kNone) continue;
-    const BodyModel& model = models_[i];
-    BodyState& state = states_[i];
-    if (!loaded_[i] && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
-      continue;  // at rest and unloaded: nothing can move it, so skip the scheme
-    }
-    // The cheap bound of SubstepsFor first, squared: (|L| + dt τ)² <= 2|L|² + 2(dt τ)².
-    const double kick = loaded_[i] ? options_.dt_s * loads_[i].TorqueBound() : 0.0;
-    const double reach_sq = loaded_[i] ? 2.0 * (state.angular_momentum.squaredNorm() + kick * kick)
-                                       : state.angular_momentum.squaredNorm();
-    const std::uint32_t substeps = reach_sq <= one_step_momentum_sq_[i] ? 1 : SubstepsFor(i, state);
-    if (substeps == 0) {
-      const BodyFault fault = CheckState(model, state);  // a NaN state set from outside
-      Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased, share);
-      continue;
-    }
-    if (substeps == 1 && model.is_full_rank()) {
-      if (loaded_[i]) {
-        share->loaded_batch.push_back(i);
-        share->loaded_batch_before.push_back(state);
-        if (share->loaded_batch.size() == kBatch) StepLoadedBatch(share);
-      } else {
-        share->free_batch.push_back(i);
-        share->free_batch_before.push_back({state.position, state.orientation});
-        if (share->free_batch.size() == kBatch) StepFreeBatch(share);
+    if (hot.faults[i] != BodyFault::kNone) continue;
+    const BodyModel& model = hot.models[i];
+    BodyState& state = hot.states[i];
+    const HeldLoads* load = hot.loaded[i] ? &hot.loads[i] : nullptr;
+    const StepPlan plan =
+        PlanStep(integrator, model, state, load, hot.one_step_momentum_sq[i], dt_s, max_substeps);
+    switch (plan.step_class) {
+      case StepClass::kAtRest:
+        break;
+      case StepClass::kFrozen: {
+        const BodyFault fault = CheckState(model, state);  // a NaN state set from outside
+        Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased, share);
+        break;
       }
-      continue;
+      case StepClass::kBatched:
+        if (load != nullptr) {
+          share->loaded_batch.push_back(i);
+          share->loaded_batch_before.push_back(state);
+          if (share->loaded_batch.size() == kBatch) StepLoadedBatch(share);
+        } else {
+          share->free_batch.push_back(i);
+          share->free_batch_before.push_back({state.position, state.orientation});
+          if (share->free_batch.size() == kBatch) StepFreeBatch(share);
+        }
+        break;
+      case StepClass::kSubsteps: {
+        if (load != nullptr && !model.is_full_rank() &&
+            load->DroppedTorque(state.orientation.toRotationMatrix()) >
+                kDroppedCoupleTolerance_Nm) {
+          ++share->dropped_couples;
+        }
+        share->substeps_max = std::max(share->substeps_max, plan.substeps);
+        const BodyState before = state;
+        const double h = dt_s / plan.substeps;
+        for (std::uint32_t k = 0; k < plan.substeps; ++k) integrator.Step(model, load, h, &state);
+        FinishStep(i, before, share);
+        break;
+      }
     }
-    if (loaded_[i] && !model.is_full_rank() &&
-        loads_[i].DroppedTorque(state.orientation.toRotationMatrix()) >
-            kDroppedCoupleTolerance_Nm) {
-      ++share->dropped_couples;
-    }
-    share->substeps_max = std::max(share->substeps_max, substeps);
-    const BodyState before = state;
-    const Load* load = loaded_[i] ? &loads_[i] : nullptr;
-    const double h = options_.dt_s / substeps;
-    for (std::uint32_t k = 0; k < substeps; ++k) integrator_->Step(model, load, h, &state);
-    FinishStep(i, before, share);
   }
   StepFreeBatch(share);
   StepLoadedBatch(share);
 }
 
 void World::RecordStepStart() {
-  step_records_.resize(models_.size());
-  step_record_valid_.assign(models_.size(), 1);
-  for (std::size_t i = 0; i < models_.size(); ++i) {
-    const BodyState& state = states_[i];
-    const BodyProperties& properties = properties_[i];
-    StepRecord& record = step_records_[i];
-    record.start_velocity_mps = models_[i].inverse_mass() * state.linear_momentum;
-    record.wrench = loaded_[i] ? loads_[i].At(0.0, state.orientation.toRotationMatrix()) : Wrench{};
+  const BodyHotColumns& hot = bodies_.hot();
+  BodyColdColumns& cold = bodies_.cold();
+  cold.step_records.resize(size());
+  cold.step_record_valid.assign(size(), 1);
+  for (std::size_t i = 0; i < size(); ++i) {
+    const BodyState& state = hot.states[i];
+    const BodyProperties& properties = cold.properties[i];
+    StepRecord& record = cold.step_records[i];
+    record.start_velocity_mps = hot.models[i].inverse_mass() * state.linear_momentum;
+    record.wrench =
+        hot.loaded[i] ? hot.loads[i].At(0.0, state.orientation.toRotationMatrix()) : Wrench{};
     record.wrench.force -= properties.linear_damping_per_s * state.linear_momentum;
     record.wrench.torque -= properties.angular_damping_per_s * state.angular_momentum;
   }
 }
 
+BodyBatch World::Batch(const std::vector<std::size_t>& indices) {
+  BodyHotColumns& hot = bodies_.hot();
+  return {hot.models.data(), hot.loads.data(), hot.states.data(), indices.data(), indices.size()};
+}
+
 void World::StepLoadedBatch(Share* share) {
   if (share->loaded_batch.empty()) return;
-  integrator_->StepLoaded(models_, share->loaded_batch, loads_, options_.dt_s, &states_);
+  integrator_->StepLoaded(Batch(share->loaded_batch), options_.dt_s);
   for (std::size_t k = 0; k < share->loaded_batch.size(); ++k) {
     FinishStep(share->loaded_batch[k], share->loaded_batch_before[k], share);
   }
@@ -300,9 +229,9 @@ void World::StepLoadedBatch(Share* share) {
 
 void World::StepFreeBatch(Share* share) {
   if (share->free_batch.empty()) return;
-  integrator_->StepFree(models_, share->free_batch, options_.dt_s, &states_);
+  integrator_->StepFree(Batch(share->free_batch), options_.dt_s);
   for (std::size_t k = 0; k < share->free_batch.size(); ++k) {
-    BodyState& state = states_[share->free_batch[k]];
+    BodyState& state = bodies_.hot().states[share->free_batch[k]];
     const BodyFault fault = CheckPose(state);
     if (fault != BodyFault::kNone) {
       state.position = share->free_batch_before[k].position;
@@ -314,40 +243,45 @@ void World::StepFreeBatch(Share* share) {
   share->free_batch_before.clear();
 }
 
-void World::FinishStep(std::size_t body, const BodyState& before, Share* share) {
-  const BodyModel& model = models_[body];
-  BodyState& state = states_[body];
+void World::FinishStep(std::size_t index, const BodyState& before, Share* share) {
+  const BodyModel& model = bodies_.hot().models[index];
+  BodyState& state = bodies_.hot().states[index];
   if (!model.is_full_rank()) {
     // Keep L in the range of I, so that the published L equals I ω.
-    const Eigen::Matrix3d a = state.orientation.toRotationMatrix();
+    const Eigen::Matrix3d R_WB = state.orientation.toRotationMatrix();
     state.angular_momentum =
-        a * (model.range_projector() * (a.transpose() * state.angular_momentum));
+        R_WB * (model.range_projector() * (R_WB.transpose() * state.angular_momentum));
   }
   const BodyFault fault = CheckState(model, state);
   if (fault != BodyFault::kNone) {
     state = before;
-    Freeze(body, fault, share);
+    Freeze(index, fault, share);
   }
 }
 
-void World::Freeze(std::size_t body, BodyFault fault, Share* share) {
-  faults_[body] = fault;
+void World::Freeze(std::size_t index, BodyFault fault, Share* share) {
+  bodies_.hot().faults[index] = fault;
   ++share->frozen;
 }
 
 void World::Reset() {
-  states_ = initial_states_;
+  BodyHotColumns& hot = bodies_.hot();
+  BodyColdColumns& cold = bodies_.cold();
+  hot.states = cold.initial_states;
   wrenches_.Clear();
-  faults_.assign(faults_.size(), BodyFault::kNone);
+  hot.faults.assign(size(), BodyFault::kNone);
   frozen_count_ = 0;
-  step_record_valid_.assign(step_record_valid_.size(), 0);
+  cold.step_record_valid.assign(cold.step_record_valid.size(), 0);
 }
 
-void World::SetBodyState(std::size_t body, const BodyState& state) {
-  states_.at(body) = state;
-  if (!step_record_valid_.empty()) step_record_valid_[body] = 0;
-  if (faults_[body] != BodyFault::kNone) {
-    faults_[body] = BodyFault::kNone;
+void World::SetBodyState(BodyId id, const BodyState& state) {
+  const std::size_t index = bodies_.CheckedIndex(id);
+  BodyHotColumns& hot = bodies_.hot();
+  hot.states[index] = state;
+  std::vector<char>& record_valid = bodies_.cold().step_record_valid;
+  if (index < record_valid.size()) record_valid[index] = 0;
+  if (hot.faults[index] != BodyFault::kNone) {
+    hot.faults[index] = BodyFault::kNone;
     --frozen_count_;
   }
 }

@@ -7,10 +7,7 @@
 
 namespace rigid_body_sim::core {
 
-WrenchTable::WrenchTable(std::vector<std::size_t> particle_counts)
-    : particle_counts_(std::move(particle_counts)), jobs_per_body_(particle_counts_.size(), 0) {}
-
-WrenchTable::Entry WrenchTable::MakeEntry(Entry::Kind kind, std::size_t body, WrenchAxes axes,
+WrenchTable::Entry WrenchTable::MakeEntry(Entry::Kind kind, BodyId body, WrenchAxes axes,
                                           const Eigen::Vector3d& force,
                                           const Eigen::Vector3d& couple, double start_s) {
   Entry entry;
@@ -24,10 +21,10 @@ WrenchTable::Entry WrenchTable::MakeEntry(Entry::Kind kind, std::size_t body, Wr
 }
 
 void WrenchTable::HoldEntry(const Entry& entry) {
-  assert(entry.body < particle_counts_.size());
+  assert(bodies_.Contains(entry.body));
   assert(entry.force.allFinite() && entry.couple.allFinite() && std::isfinite(entry.start_s));
   reduced_ = false;
-  const auto [it, inserted] = index_.try_emplace(Key(entry), entries_.size());
+  const auto [it, inserted] = index_.try_emplace(KeyOf(entry), entries_.size());
   if (inserted) {
     entries_.push_back(entry);
   } else {
@@ -36,7 +33,7 @@ void WrenchTable::HoldEntry(const Entry& entry) {
 }
 
 void WrenchTable::Hold(const ParticleWrench& wrench) {
-  assert(wrench.body < particle_counts_.size() && wrench.particle < particle_counts_[wrench.body]);
+  assert(bodies_.Contains(wrench.body) && wrench.particle < bodies_.at(wrench.body).particle_count);
   Entry entry = MakeEntry(Entry::Kind::kParticle, wrench.body, wrench.axes, wrench.force,
                           wrench.couple, wrench.start_s);
   entry.particle = wrench.particle;
@@ -49,11 +46,12 @@ void WrenchTable::HoldBodyWrench(const BodyWrench& wrench) {
 }
 
 JobRefusal WrenchTable::AddJob(const WrenchJob& job, double t_s) {
-  assert(job.body < particle_counts_.size());
+  assert(bodies_.Contains(job.body));
   assert(job.force.allFinite() && job.couple.allFinite() && job.point_m.allFinite());
   assert(std::isfinite(job.start_s) && !std::isnan(job.end_s));
-  if (jobs_per_body_[job.body] >= kMaxJobsPerBody || job_count_ >= kMaxJobs) DropEndedJobs(t_s);
-  if (jobs_per_body_[job.body] >= kMaxJobsPerBody) return JobRefusal::kBodyFull;
+  std::size_t& body_jobs = bodies_.at(job.body).jobs;
+  if (body_jobs >= kMaxJobsPerBody || job_count_ >= kMaxJobs) DropEndedJobs(t_s);
+  if (body_jobs >= kMaxJobsPerBody) return JobRefusal::kBodyFull;
   if (job_count_ >= kMaxJobs) return JobRefusal::kTableFull;
   reduced_ = false;
   Entry entry =
@@ -61,7 +59,7 @@ JobRefusal WrenchTable::AddJob(const WrenchJob& job, double t_s) {
   entry.point_m = job.point_m;
   entry.end_s = job.end_s;
   entries_.push_back(entry);
-  ++jobs_per_body_[job.body];
+  ++body_jobs;
   ++job_count_;
   return JobRefusal::kNone;
 }
@@ -69,14 +67,14 @@ JobRefusal WrenchTable::AddJob(const WrenchJob& job, double t_s) {
 void WrenchTable::Erase(std::size_t i) {
   const Entry& entry = entries_[i];
   if (entry.kind == Entry::Kind::kJob) {
-    --jobs_per_body_[entry.body];
+    --bodies_.at(entry.body).jobs;
     --job_count_;
   } else {
-    index_.erase(Key(entry));
+    index_.erase(KeyOf(entry));
   }
   if (i + 1 != entries_.size()) {
     entries_[i] = entries_.back();
-    if (entries_[i].kind != Entry::Kind::kJob) index_[Key(entries_[i])] = i;
+    if (entries_[i].kind != Entry::Kind::kJob) index_[KeyOf(entries_[i])] = i;
   }
   entries_.pop_back();
 }
@@ -96,11 +94,11 @@ void WrenchTable::Clear() {
   reduced_ = false;
   entries_.clear();
   index_.clear();
-  std::fill(jobs_per_body_.begin(), jobs_per_body_.end(), 0);
+  bodies_.ForEach([](PerBody& body) { body.jobs = 0; });
   job_count_ = 0;
 }
 
-void WrenchTable::ClearBody(std::size_t body) {
+void WrenchTable::ClearBody(BodyId body) {
   for (std::size_t i = 0; i < entries_.size();) {
     if (entries_[i].body == body) {
       Erase(i);
@@ -111,33 +109,19 @@ void WrenchTable::ClearBody(std::size_t body) {
   }
 }
 
-void WrenchTable::AddBody(std::size_t particle_count) {
-  particle_counts_.push_back(particle_count);
-  jobs_per_body_.push_back(0);
+void WrenchTable::AddBody(BodyId body, std::size_t particle_count) {
+  bodies_.Insert(body, PerBody{particle_count, 0});
   reduced_ = false;
 }
 
-void WrenchTable::RemoveBody(std::size_t body) {
+void WrenchTable::RemoveBody(BodyId body) {
   ClearBody(body);
-  particle_counts_.erase(particle_counts_.begin() + static_cast<std::ptrdiff_t>(body));
-  jobs_per_body_.erase(jobs_per_body_.begin() + static_cast<std::ptrdiff_t>(body));
-  for (Entry& entry : entries_) {
-    if (entry.body > body) --entry.body;
-  }
-  Reindex();
-  reduced_ = false;
+  bodies_.Erase(body);
+  reduced_ = false;  // the loads of the bodies after it moved down
 }
 
-void WrenchTable::Reindex() {
-  index_.clear();
-  for (std::size_t i = 0; i < entries_.size(); ++i) {
-    if (entries_[i].kind != Entry::Kind::kJob) index_.emplace(Key(entries_[i]), i);
-  }
-}
-
-bool WrenchTable::Reduce(double t_s, double timeout_s, double tolerance_s,
-                         const std::vector<BodyModel>& models, std::vector<HeldLoads>* loads,
-                         std::vector<char>* loaded) {
+bool WrenchTable::Reduce(double t_s, double timeout_s, double tolerance_s, const BodyStore& store,
+                         std::vector<HeldLoads>* loads, std::vector<char>* loaded) {
   // The same comparisons as below, so that the sums are kept exactly when
   // they would come out the same.
   if (reduced_ && timeout_s == reduced_timeout_s_ && tolerance_s == reduced_tolerance_s_ &&
@@ -168,16 +152,18 @@ bool WrenchTable::Reduce(double t_s, double timeout_s, double tolerance_s,
     if (entry.start_s > t_s + tolerance_s) {
       next_start_s_ = std::min(next_start_s_, entry.start_s);
     } else {
-      HeldLoads& body_loads = (*loads)[entry.body];
-      (*loaded)[entry.body] = 1;
+      const std::size_t index = store.CheckedIndex(entry.body);
+      HeldLoads& body_loads = (*loads)[index];
+      (*loaded)[index] = 1;
       if (entry.kind == Entry::Kind::kBody && entry.axes == WrenchAxes::kWorld) {
         // At the COM: a world-axes force alone leaves the body torque-free.
         body_loads.AddCentralForce(entry.force);
         if (!entry.couple.isZero(0.0)) body_loads.AddWorldCouple(entry.couple);
       } else {
-        const Eigen::Vector3d offset = entry.kind == Entry::Kind::kParticle
-                                           ? models[entry.body].particle_offsets()[entry.particle]
-                                           : entry.point_m;  // zero for a body wrench
+        const Eigen::Vector3d offset =
+            entry.kind == Entry::Kind::kParticle
+                ? store.hot().models[index].particle_offsets()[entry.particle]
+                : entry.point_m;  // zero for a body wrench
         if (entry.axes == WrenchAxes::kWorld) {
           body_loads.AddWorldForce(entry.force, offset);
           body_loads.AddWorldCouple(entry.couple);

@@ -47,18 +47,20 @@ BodyTopics::~BodyTopics() {
   if (worker_.joinable()) worker_.join();
 }
 
-void BodyTopics::Add(const std::string& body) {
+void BodyTopics::Add(core::BodyId id, const std::string& body) {
   auto topics = std::make_shared<Topics>();
   topics->body = body;
-  bodies_.push_back(topics);
+  bodies_.Insert(id, topics);
+  ++body_count_;
   if (enabled_) Push({std::move(topics), true});
 }
 
-void BodyTopics::Remove(std::size_t index) {
-  std::shared_ptr<Topics> topics = std::move(bodies_[index]);
+void BodyTopics::Remove(core::BodyId id) {
+  std::shared_ptr<Topics> topics = std::move(bodies_.at(id));
   topics->removed.store(true, std::memory_order_release);
   step_record_subscribers_ -= topics->imu.subscribers + topics->applied_wrench.subscribers;
-  bodies_.erase(bodies_.begin() + static_cast<std::ptrdiff_t>(index));
+  bodies_.Erase(id);
+  --body_count_;
   if (enabled_) Push({std::move(topics), false});
 }
 

@@ -55,6 +55,9 @@ class LogThread {
       lines_.pop_front();
       lock.unlock();
       switch (level) {
+        case LogLevel::kDebug:
+          ROS_DEBUG("%s", line.c_str());
+          break;
         case LogLevel::kInfo:
           ROS_INFO("%s", line.c_str());
           break;
@@ -82,6 +85,13 @@ class LogThread {
 void LogOffThread(LogLevel level, std::string line) {
   static LogThread thread;
   thread.Push(level, std::move(line));
+}
+
+bool LogEnabled(LogLevel level) {
+  if (level != LogLevel::kDebug) return true;
+  // The check ROS_DEBUG makes, for the logger it writes to.
+  ROSCONSOLE_DEFINE_LOCATION(true, ::ros::console::levels::Debug, ROSCONSOLE_DEFAULT_NAME);
+  return __rosconsole_define_location__enabled;
 }
 
 std::string Format(const char* format, ...) {

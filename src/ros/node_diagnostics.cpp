@@ -23,119 +23,146 @@ double Microseconds(std::chrono::steady_clock::duration duration) {
 }  // namespace
 
 NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& private_nh, const NodeSettings& settings,
-                                 const core::World& world, const core::StepPacer& pacer,
-                                 const WrenchIntake& intake, const BodyTopics& body_topics,
-                                 const LockstepGate* lockstep, const StateHashWorker& state_hashes)
-    : settings_(settings),
-      world_(world),
-      pacer_(pacer),
-      intake_(intake),
-      body_topics_(body_topics),
-      lockstep_(lockstep),
-      state_hashes_(state_hashes),
+                                 const core::World& world)
+    : status_period_s_(settings.status_period_s),
+      shard_(settings.shard),
       conservation_(world),
       sweep_per_step_(world.size() / kStepsPerConservationSweep + 1),
       updater_(ros::NodeHandle(), private_nh),
-      reported_faults_(world.size(), core::BodyFault::kNone) {
+      reported_faults_() {
+  for (std::size_t body = 0; body < world.size(); ++body) {
+    reported_faults_.Insert(world.id(body), core::BodyFault::kNone);
+  }
   updater_.setHardwareID("none");
   updater_.add("simulation", this, &NodeDiagnostics::Fill);
 }
 
-void NodeDiagnostics::Start(Clock::time_point now) { window_ = Window{now, world_.time()}; }
+void NodeDiagnostics::Start(Clock::time_point now, const core::World& world) {
+  window_ = Window{now, world.time()};
+}
 
-void NodeDiagnostics::RecordStep(Clock::duration step_time, const ros::Time& stamp) {
-  if (world_.frozen_count() > frozen_seen_) ReportNewFaults(stamp);
-  frozen_seen_ = world_.frozen_count();
-  conservation_.Sweep(world_, sweep_per_step_);
+void NodeDiagnostics::RecordStep(const core::World& world, Clock::duration step_time,
+                                 const ros::Time& stamp) {
+  if (world.frozen_count() > frozen_seen_) ReportNewFaults(world, stamp);
+  frozen_seen_ = world.frozen_count();
+  conservation_.Sweep(world, sweep_per_step_);
   ++window_.steps;
   window_.step_time_total += step_time;
   window_.step_time_max = std::max(window_.step_time_max, step_time);
-  window_.substeps_max = std::max(window_.substeps_max, world_.last_step_substeps_max());
+  window_.substeps_max = std::max(window_.substeps_max, world.last_step_substeps_max());
 }
 
-void NodeDiagnostics::ReportNewFaults(const ros::Time& stamp) {
-  for (std::size_t body = 0; body < world_.size(); ++body) {
-    const core::BodyFault fault = world_.fault(body);
-    if (fault == core::BodyFault::kNone || reported_faults_[body] == fault) continue;
-    reported_faults_[body] = fault;
+void NodeDiagnostics::ReportNewFaults(const core::World& world, const ros::Time& stamp) {
+  for (std::size_t body = 0; body < world.size(); ++body) {
+    const core::BodyFault fault = world.fault(body);
+    core::BodyFault& reported = reported_faults_.at(world.id(body));
+    if (fault == core::BodyFault::kNone || reported == fault) continue;
+    reported = fault;
     if (!fault_errors_.Ready()) continue;
     LogOffThread(LogLevel::kError,
                  Format("body '%s' frozen at its last finite state (%s) at t = %.6f s; "
                         "~reset or ~set_body_state brings it back",
-                        world_.model(body).name().c_str(), core::ToString(fault), stamp.toSec()));
+                        world.model(body).name().c_str(), core::ToString(fault), stamp.toSec()));
   }
 }
 
-void NodeDiagnostics::OnBodyStateSet(std::size_t body) {
-  conservation_.Rebase(world_, body);
-  reported_faults_[body] = core::BodyFault::kNone;
-  frozen_seen_ = world_.frozen_count();
+void NodeDiagnostics::OnWorldEvent(const WorldEvent& event, const core::World& world) {
+  switch (event.kind) {
+    case WorldEvent::Kind::kWrenchHeld:
+      conservation_.MarkLoaded(event.body);
+      break;
+    case WorldEvent::Kind::kBodyWrenchesCleared:
+      // Still not torque-free since its reference: only ~set_body_state,
+      // ~reset or ~clear_wrenches measure it again (doc/node.md, "Diagnostics").
+      break;
+    case WorldEvent::Kind::kWrenchesCleared:
+      conservation_.RebaseAll(world);
+      break;
+    case WorldEvent::Kind::kBodyStateSet:
+      conservation_.Rebase(world, event.body);
+      reported_faults_.at(event.body) = core::BodyFault::kNone;
+      frozen_seen_ = world.frozen_count();
+      break;
+    case WorldEvent::Kind::kReset:
+      conservation_.RebaseAll(world);
+      reported_faults_.ForEach(
+          [](core::BodyFault& reported) { reported = core::BodyFault::kNone; });
+      frozen_seen_ = world.frozen_count();
+      break;
+  }
 }
 
-void NodeDiagnostics::OnReset() {
-  conservation_.RebaseAll(world_);
-  reported_faults_.assign(world_.size(), core::BodyFault::kNone);
-  frozen_seen_ = world_.frozen_count();
+void NodeDiagnostics::OnBodyAdded(const core::World& world, core::BodyId body) {
+  conservation_.AddBody(world, body);
+  reported_faults_.Insert(body, core::BodyFault::kNone);
 }
 
-void NodeDiagnostics::OnBodyAdded() {
-  conservation_.AddBody(world_);
-  reported_faults_.push_back(core::BodyFault::kNone);
-}
-
-void NodeDiagnostics::OnBodyRemoved(std::size_t body) {
+void NodeDiagnostics::OnBodyRemoved(const core::World& world, core::BodyId body) {
   conservation_.RemoveBody(body);
-  reported_faults_.erase(reported_faults_.begin() + static_cast<std::ptrdiff_t>(body));
-  frozen_seen_ = world_.frozen_count();
+  reported_faults_.Erase(body);
+  frozen_seen_ = world.frozen_count();
 }
 
-void NodeDiagnostics::Report(Clock::time_point now, const ros::Time& stamp, bool paused) {
+void NodeDiagnostics::Report(Clock::time_point now, const NodeStatus& status,
+                             const core::World& world) {
   const double wall_s = std::chrono::duration<double>(now - window_.start).count();
-  achieved_real_time_factor_ =
-      wall_s > 0.0 ? (world_.time() - window_.start_sim_time_s) / wall_s : 0.0;
-  step_time_mean_us_ =
+  WindowSummary summary;
+  summary.achieved_real_time_factor =
+      wall_s > 0.0 ? (world.time() - window_.start_sim_time_s) / wall_s : 0.0;
+  summary.step_time_mean_us =
       window_.steps > 0 ? Microseconds(window_.step_time_total) / static_cast<double>(window_.steps)
                         : 0.0;
-  step_time_max_us_ = Microseconds(window_.step_time_max);
-  substeps_max_ = window_.substeps_max;
-  window_ = Window{now, world_.time()};
-  paused_ = paused;
-  stamp_ = stamp;
-  if (lockstep_ != nullptr) {
-    lockstep_timed_out_ = lockstep_->timeouts() > lockstep_timeouts_at_last_report_;
-    lockstep_timeouts_at_last_report_ = lockstep_->timeouts();
+  summary.step_time_max_us = Microseconds(window_.step_time_max);
+  summary.substeps_max = window_.substeps_max;
+  window_ = Window{now, world.time()};
+  bool lockstep_timed_out = false;  // in this report window
+  if (status.lockstep) {
+    lockstep_timed_out = status.lockstep->timeouts > lockstep_timeouts_at_last_report_;
+    lockstep_timeouts_at_last_report_ = status.lockstep->timeouts;
   }
 
-  if (settings_.status_period_s > 0.0 && now >= next_status_) {
-    const std::string substeps =
-        substeps_max_ > 1 ? ", up to " + std::to_string(substeps_max_) + " substeps" : "";
-    LogOffThread(
-        LogLevel::kInfo,
-        Format("sim time %.3f s (%.3f s since start), real-time factor %.3f%s, %zu bodies, "
-               "step %.1f us (max %.1f us)%s, %llu overruns",
-               stamp.toSec(), world_.time(), achieved_real_time_factor_, paused ? " (paused)" : "",
-               world_.size(), step_time_mean_us_, step_time_max_us_, substeps.c_str(),
-               static_cast<unsigned long long>(pacer_.overruns() - overruns_at_last_status_)));
-    overruns_at_last_status_ = pacer_.overruns();
-    next_status_ = now + std::chrono::duration_cast<Clock::duration>(
-                             std::chrono::duration<double>(settings_.status_period_s));
-  }
+  if (status_period_s_ > 0.0 && now >= next_status_) LogStatusLine(now, status, world, summary);
+  Compose(status, world, summary, lockstep_timed_out);
   updater_.force_update();
 }
 
+void NodeDiagnostics::LogStatusLine(Clock::time_point now, const NodeStatus& status,
+                                    const core::World& world, const WindowSummary& window) {
+  const std::string substeps =
+      window.substeps_max > 1 ? ", up to " + std::to_string(window.substeps_max) + " substeps" : "";
+  LogOffThread(LogLevel::kInfo,
+               Format("sim time %.3f s (%.3f s since start), real-time factor %.3f%s, %zu bodies, "
+                      "step %.1f us (max %.1f us)%s, %llu overruns",
+                      status.stamp.toSec(), world.time(), window.achieved_real_time_factor,
+                      status.paused ? " (paused)" : "", world.size(), window.step_time_mean_us,
+                      window.step_time_max_us, substeps.c_str(),
+                      static_cast<unsigned long long>(status.overruns - overruns_at_last_status_)));
+  overruns_at_last_status_ = status.overruns;
+  next_status_ = now + std::chrono::duration_cast<Clock::duration>(
+                           std::chrono::duration<double>(status_period_s_));
+}
+
 void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  status.summary(report_);
+  status.values = report_.values;
+}
+
+void NodeDiagnostics::Compose(const NodeStatus& node, const core::World& world,
+                              const WindowSummary& window, bool lockstep_timed_out) {
+  diagnostic_updater::DiagnosticStatusWrapper& status = report_;
+  status.values.clear();
   // Single late wake-ups are normal on a busy machine; falling behind is not.
-  const bool slow =
-      !paused_ && pacer_.paced() && achieved_real_time_factor_ < 0.9 * settings_.real_time_factor;
-  if (world_.frozen_count() > 0) {
+  const bool slow = !node.paused && node.paced &&
+                    window.achieved_real_time_factor < 0.9 * node.real_time_factor_target;
+  if (world.frozen_count() > 0) {
     status.summary(diagnostic_msgs::DiagnosticStatus::ERROR,
-                   std::to_string(world_.frozen_count()) +
+                   std::to_string(world.frozen_count()) +
                        " body(ies) frozen at their last finite state; ~reset or "
                        "~set_body_state brings them back");
-  } else if (lockstep_timed_out_) {  // in the last report period
+  } else if (lockstep_timed_out) {  // in the last report period
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                    "lockstep: a controller did not answer within ~lockstep_timeout");
-  } else if (paused_) {
+  } else if (node.paused) {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "paused");
   } else if (slow) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
@@ -143,55 +170,56 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "running");
   }
-  status.addf("sim_time_s", "%.6f", stamp_.toSec());
-  status.add("steps", world_.step_count());
-  status.add("integrator", world_.integrator().name());
-  status.add("dt_s", world_.options().dt_s);
-  status.add("paused", paused_);
-  status.add("step_time_mean_us", step_time_mean_us_);
-  status.add("step_time_max_us", step_time_max_us_);
-  status.add("substeps_max", substeps_max_);
-  status.add("max_substeps", world_.options().max_substeps);
-  status.add("overruns", pacer_.overruns());
-  status.add("catch_up_limit_hits", pacer_.catch_up_limit_hits());
-  status.add("real_time_factor_target", settings_.real_time_factor);
-  status.add("real_time_factor_achieved", achieved_real_time_factor_);
-  status.add("bodies", world_.size());
-  status.add("bodies_with_topics", body_topics_.advertised_count());
-  status.add("held_wrenches", world_.wrenches().size());
-  status.add("wrench_jobs", world_.wrenches().job_count());
-  status.add("rejected_messages", intake_.rejected_messages());
+  status.addf("sim_time_s", "%.6f", node.stamp.toSec());
+  status.add("steps", world.step_count());
+  status.add("integrator", world.integrator().name());
+  status.add("dt_s", world.options().dt_s);
+  status.add("paused", node.paused);
+  status.add("step_time_mean_us", window.step_time_mean_us);
+  status.add("step_time_max_us", window.step_time_max_us);
+  status.add("substeps_max", window.substeps_max);
+  status.add("max_substeps", world.options().max_substeps);
+  status.add("overruns", node.overruns);
+  status.add("catch_up_limit_hits", node.catch_up_limit_hits);
+  status.add("real_time_factor_target", node.real_time_factor_target);
+  status.add("real_time_factor_achieved", window.achieved_real_time_factor);
+  status.add("bodies", world.size());
+  status.add("bodies_with_topics", node.bodies_with_topics);
+  status.add("held_wrenches", world.wrenches().size());
+  status.add("wrench_jobs", world.wrenches().job_count());
+  status.add("rejected_messages", node.rejected_messages);
   for (std::size_t reason = 1; reason < kWrenchMsgRejectionCount; ++reason) {
     const auto rejection = static_cast<WrenchMsgRejection>(reason);
     if (rejection == WrenchMsgRejection::kOtherShard) continue;
-    status.add(std::string("rejected_") + ToString(rejection), intake_.rejected(rejection));
+    status.add(std::string("rejected_") + ToString(rejection), node.rejected[reason]);
   }
-  if (settings_.shard.count > 1) {
-    status.add("shard_index", settings_.shard.index);
-    status.add("shard_count", settings_.shard.count);
-    status.add("other_shard", intake_.other_shard());
+  if (shard_.count > 1) {
+    status.add("shard_index", shard_.index);
+    status.add("shard_count", shard_.count);
+    status.add("other_shard", node.other_shard);
   }
-  if (lockstep_ != nullptr) {
-    status.add("lockstep_late_answers", lockstep_->late_answers());
-    status.add("lockstep_future_stamp", lockstep_->future_stamps());
-    status.add("lockstep_timeouts", lockstep_->timeouts());
+  if (node.lockstep) {
+    status.add("lockstep_late_answers", node.lockstep->late_answers);
+    status.add("lockstep_future_stamp", node.lockstep->future_stamps);
+    status.add("lockstep_timeouts", node.lockstep->timeouts);
   }
-  if (const std::optional<StateHashWorker::Result> hashed = state_hashes_.latest()) {
-    status.add("state_hash", core::HashHex(hashed->hash));
-    status.addf("state_hash_stamp", "%u.%09u", hashed->stamp.sec, hashed->stamp.nsec);
+  if (node.state_hash) {
+    status.add("state_hash", core::HashHex(node.state_hash->hash));
+    status.addf("state_hash_stamp", "%u.%09u", node.state_hash->stamp.sec,
+                node.state_hash->stamp.nsec);
   }
-  status.add("dropped_couples", world_.dropped_couple_count());
-  status.add("frozen_bodies", world_.frozen_count());
-  for (std::size_t body = 0; body < world_.size(); ++body) {
-    if (world_.fault(body) == core::BodyFault::kNone) continue;
-    status.add(world_.model(body).name() + "/frozen", core::ToString(world_.fault(body)));
+  status.add("dropped_couples", world.dropped_couple_count());
+  status.add("frozen_bodies", world.frozen_count());
+  for (std::size_t body = 0; body < world.size(); ++body) {
+    if (world.fault(body) == core::BodyFault::kNone) continue;
+    status.add(world.model(body).name() + "/frozen", core::ToString(world.fault(body)));
   }
-  if (world_.size() <= kMaxPerBodyDriftKeys) {
-    for (std::size_t body = 0; body < world_.size(); ++body) {
+  if (world.size() <= kMaxPerBodyDriftKeys) {
+    for (std::size_t body = 0; body < world.size(); ++body) {
       const std::optional<core::ConservationMonitor::Drift> drift =
-          conservation_.Measure(world_, body);
+          conservation_.Measure(world, body);
       if (!drift) continue;
-      const std::string& name = world_.model(body).name();
+      const std::string& name = world.model(body).name();
       status.add(name + "/angular_momentum_drift", drift->angular_momentum_norm);
       status.add(name + "/rotational_energy_drift", drift->rotational_energy);
     }
@@ -200,10 +228,10 @@ void NodeDiagnostics::Fill(diagnostic_updater::DiagnosticStatusWrapper& status) 
   if (largest.measured) {
     status.add("angular_momentum_drift_max", largest.angular_momentum_norm);
     status.add("angular_momentum_drift_max_body",
-               world_.model(largest.angular_momentum_body).name());
+               world.model(largest.angular_momentum_body).name());
     status.add("rotational_energy_drift_max", largest.rotational_energy);
     status.add("rotational_energy_drift_max_body",
-               world_.model(largest.rotational_energy_body).name());
+               world.model(largest.rotational_energy_body).name());
   }
 }
 

@@ -57,23 +57,19 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
   Advertise<BodyStateArray>(private_nh, "bodies", kStateQueueSize, &bodies_);
   Advertise<visualization_msgs::MarkerArray>(private_nh, "particles", kStateQueueSize, &particles_);
   if (publish_clock_) clock_ = root.advertise<rosgraph_msgs::Clock>("/clock", kStateQueueSize);
-  for (const core::BodyModel& model : world.models()) AddBody(model);
+  for (std::size_t index = 0; index < world.size(); ++index) OnBodyAdded(world, world.id(index));
 }
 
-void StatePublisher::AddBody(const core::BodyModel& model) {
-  child_frames_.push_back(BodyFrameId(tf_prefix_, model.name()));
-  marker_ids_.push_back(next_marker_id_++);
-  body_topics_.Add(model.name());
+void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
+  const std::string& name = world.model(id).name();
+  per_body_.Insert(id, {BodyFrameId(tf_prefix_, name), next_marker_id_++});
+  body_topics_.Add(id, name);
 }
 
-void StatePublisher::RemoveBody(std::size_t index) {
-  const auto at = [index](auto& per_body) {
-    per_body.erase(per_body.begin() + static_cast<std::ptrdiff_t>(index));
-  };
-  deleted_marker_ids_.push_back(marker_ids_[index]);
-  at(child_frames_);
-  at(marker_ids_);
-  body_topics_.Remove(index);
+void StatePublisher::OnBodyRemoved(const core::World& /*world*/, core::BodyId id) {
+  deleted_marker_ids_.push_back(per_body_.at(id).marker_id);
+  per_body_.Erase(id);
+  body_topics_.Remove(id);
 }
 
 void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
@@ -95,7 +91,7 @@ void StatePublisher::PublishTf(const core::World& world, const ros::Time& stamp)
   for (std::size_t body = 0; body < world.size(); ++body) {
     tf.transforms[body].header.stamp = stamp;
     tf.transforms[body].header.frame_id = world_frame_;
-    tf.transforms[body].child_frame_id = child_frames_[body];
+    tf.transforms[body].child_frame_id = per_body_.at(world.id(body)).child_frame;
     tf.transforms[body].transform = ToTransformMsg(world.state(body));
   }
   tf_.publisher.publish(tf);
@@ -103,8 +99,10 @@ void StatePublisher::PublishTf(const core::World& world, const ros::Time& stamp)
 
 void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time& stamp) {
   for (std::size_t body = 0; body < world.size(); ++body) {
-    const BodyTopics::Topics* topics = body_topics_.at(body);
+    const core::BodyId id = world.id(body);
+    const BodyTopics::Topics* topics = body_topics_.at(id);
     if (topics == nullptr) continue;  // not yet advertised
+    const std::string& child_frame = per_body_.at(id).child_frame;
     if (topics->pose.wanted()) {
       geometry_msgs::PoseStamped pose;
       pose.header.stamp = stamp;
@@ -120,8 +118,8 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
       topics->twist.publisher.publish(twist);
     }
     if (topics->odom.wanted()) {
-      topics->odom.publisher.publish(ToOdometryMsg(world.model(body), world.state(body),
-                                                   world_frame_, child_frames_[body], stamp));
+      topics->odom.publisher.publish(
+          ToOdometryMsg(world.model(body), world.state(body), world_frame_, child_frame, stamp));
     }
     const core::StepRecord* record = world.last_step_record(body);
     if (record == nullptr) continue;  // no step since start, reset, spawn or set state
@@ -133,12 +131,12 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
       inputs.gravity_scale = world.properties(body).gravity_scale;
       inputs.body = body;
       inputs.step = world.step_count();
-      topics->imu.publisher.publish(ToImuMsg(world.model(body), world.state(body), inputs,
-                                             imu_noise_, child_frames_[body], stamp));
+      topics->imu.publisher.publish(
+          ToImuMsg(world.model(body), world.state(body), inputs, imu_noise_, child_frame, stamp));
     }
     if (topics->applied_wrench.wanted()) {
       topics->applied_wrench.publisher.publish(
-          ToAppliedWrenchMsg(world.state(body), record->wrench, child_frames_[body], stamp));
+          ToAppliedWrenchMsg(world.state(body), record->wrench, child_frame, stamp));
     }
   }
 }
@@ -163,7 +161,7 @@ void StatePublisher::PublishParticles(const core::World& world, const ros::Time&
     marker.header.stamp = stamp;
     marker.header.frame_id = world_frame_;
     marker.ns = "particles";
-    marker.id = marker_ids_[body];
+    marker.id = per_body_.at(world.id(body)).marker_id;
     marker.type = visualization_msgs::Marker::SPHERE_LIST;
     marker.action = visualization_msgs::Marker::ADD;
     marker.pose.orientation.w = 1.0;

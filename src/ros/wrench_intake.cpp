@@ -45,32 +45,12 @@ WrenchFrames MakeWrenchFrames(const core::World& world, const std::string& world
                               std::unordered_map<std::string, std::uint32_t> other_shard_bodies,
                               std::uint32_t shard_count) {
   WrenchFrames frames;
+  frames.world = &world;
   frames.world_frame = world_frame;
   frames.tf_prefix = tf_prefix;
   frames.other_shard_bodies = std::move(other_shard_bodies);
   frames.shard_count = shard_count;
-  for (const core::BodyModel& model : world.models()) {
-    frames.body_index.emplace(model.name(), frames.particle_counts.size());
-    frames.particle_counts.push_back(model.particle_count());
-  }
   return frames;
-}
-
-void AddBodyFrame(const core::BodyModel& model, WrenchFrames* frames) {
-  frames->body_index.emplace(model.name(), frames->particle_counts.size());
-  frames->particle_counts.push_back(model.particle_count());
-}
-
-void RemoveBodyFrame(const std::string& name, WrenchFrames* frames) {
-  const auto removed = frames->body_index.find(name);
-  if (removed == frames->body_index.end()) return;
-  const std::size_t body = removed->second;
-  frames->body_index.erase(removed);
-  for (auto& [other, index] : frames->body_index) {
-    if (index > body) --index;
-  }
-  frames->particle_counts.erase(frames->particle_counts.begin() +
-                                static_cast<std::ptrdiff_t>(body));
 }
 
 std::string QuotedName(const std::string& name) {
@@ -109,78 +89,67 @@ double StartTimeOf(const ros::Time& stamp, const ros::Time& start_stamp, double 
   return stamp.isZero() ? next_step_time_s : SecondsSince(start_stamp, stamp);
 }
 
-CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
-                                  const ros::Time& start_stamp, double next_step_time_s) {
-  CheckedWrench result;
+namespace {
+
+// The chain of checks both kinds of wrench take, in order: a body of this
+// node, a particle in range (a particle wrench's), finite numbers, a known
+// frame. Fills the core wrench's common fields when they pass.
+template <typename CoreWrench>
+Checked<CoreWrench> CheckWrench(const std::string& body, const std::uint32_t* particle,
+                                const geometry_msgs::Wrench& msg, const std::string& frame_id,
+                                const ros::Time& stamp, const WrenchFrames& frames,
+                                const ros::Time& start_stamp, double next_step_time_s) {
+  Checked<CoreWrench> result;
   const auto reject = [&result](WrenchMsgRejection reason, std::string detail) {
     result.rejection = reason;
     result.detail = std::move(detail);
     return result;
   };
-
-  const auto body = frames.body_index.find(msg.body);
-  if (body == frames.body_index.end()) {
-    return reject(NotHereRejection(msg.body, frames), NotHereMessage(msg.body, frames));
+  const std::optional<core::BodyId> id = frames.world->FindBody(body);
+  if (!id) return reject(NotHereRejection(body, frames), NotHereMessage(body, frames));
+  if (particle != nullptr) {
+    const std::size_t particle_count = frames.world->model(*id).particle_count();
+    if (*particle >= particle_count) {
+      return reject(WrenchMsgRejection::kParticleOutOfRange,
+                    "particle " + std::to_string(*particle) + " out of range: body '" + body +
+                        "' has " + std::to_string(particle_count) + " particles");
+    }
   }
-  const std::size_t body_index = body->second;
-  if (msg.particle >= frames.particle_counts[body_index]) {
-    return reject(WrenchMsgRejection::kParticleOutOfRange,
-                  "particle " + std::to_string(msg.particle) + " out of range: body '" + msg.body +
-                      "' has " + std::to_string(frames.particle_counts[body_index]) + " particles");
-  }
-
-  const Eigen::Vector3d force = FromVector3Msg(msg.wrench.force);
-  const Eigen::Vector3d couple = FromVector3Msg(msg.wrench.torque);
+  const Eigen::Vector3d force = FromVector3Msg(msg.force);
+  const Eigen::Vector3d couple = FromVector3Msg(msg.torque);
   if (!force.allFinite() || !couple.allFinite()) {
-    return reject(WrenchMsgRejection::kNonFinite, "NaN or infinite force or torque for body '" +
-                                                      msg.body + "' particle " +
-                                                      std::to_string(msg.particle));
+    return reject(WrenchMsgRejection::kNonFinite,
+                  "NaN or infinite force or torque for body '" + body + "'" +
+                      (particle != nullptr ? " particle " + std::to_string(*particle) : ""));
   }
-
-  const std::optional<core::WrenchAxes> axes = AxesOfFrame(msg.header.frame_id, msg.body, frames);
+  const std::optional<core::WrenchAxes> axes = AxesOfFrame(frame_id, body, frames);
   if (!axes) {
-    return reject(WrenchMsgRejection::kUnknownFrame,
-                  UnknownFrameMessage(msg.header.frame_id, msg.body, frames));
+    return reject(WrenchMsgRejection::kUnknownFrame, UnknownFrameMessage(frame_id, body, frames));
   }
-
-  result.wrench.body = body_index;
-  result.wrench.particle = msg.particle;
+  result.wrench.body = *id;
   result.wrench.axes = *axes;
   result.wrench.force = force;
   result.wrench.couple = couple;
-  result.wrench.start_s = StartTimeOf(msg.header.stamp, start_stamp, next_step_time_s);
+  result.wrench.start_s = StartTimeOf(stamp, start_stamp, next_step_time_s);
+  return result;
+}
+
+}  // namespace
+
+CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
+                                  const ros::Time& start_stamp, double next_step_time_s) {
+  CheckedWrench result =
+      CheckWrench<core::ParticleWrench>(msg.body, &msg.particle, msg.wrench, msg.header.frame_id,
+                                        msg.header.stamp, frames, start_stamp, next_step_time_s);
+  result.wrench.particle = msg.particle;
   return result;
 }
 
 CheckedBodyWrench CheckBodyWrench(const geometry_msgs::WrenchStamped& msg, const std::string& body,
                                   const WrenchFrames& frames, const ros::Time& start_stamp,
                                   double next_step_time_s) {
-  CheckedBodyWrench result;
-  const auto found = frames.body_index.find(body);
-  if (found == frames.body_index.end()) {
-    result.rejection = NotHereRejection(body, frames);
-    result.detail = NotHereMessage(body, frames);
-    return result;
-  }
-  const Eigen::Vector3d force = FromVector3Msg(msg.wrench.force);
-  const Eigen::Vector3d couple = FromVector3Msg(msg.wrench.torque);
-  if (!force.allFinite() || !couple.allFinite()) {
-    result.rejection = WrenchMsgRejection::kNonFinite;
-    result.detail = "NaN or infinite force or torque for body '" + body + "'";
-    return result;
-  }
-  const std::optional<core::WrenchAxes> axes = AxesOfFrame(msg.header.frame_id, body, frames);
-  if (!axes) {
-    result.rejection = WrenchMsgRejection::kUnknownFrame;
-    result.detail = UnknownFrameMessage(msg.header.frame_id, body, frames);
-    return result;
-  }
-  result.wrench.body = found->second;
-  result.wrench.axes = *axes;
-  result.wrench.force = force;
-  result.wrench.couple = couple;
-  result.wrench.start_s = StartTimeOf(msg.header.stamp, start_stamp, next_step_time_s);
-  return result;
+  return CheckWrench<core::BodyWrench>(body, nullptr, msg.wrench, msg.header.frame_id,
+                                       msg.header.stamp, frames, start_stamp, next_step_time_s);
 }
 
 std::optional<core::ParticleWrench> WrenchIntake::Take(const ParticleWrench& msg,

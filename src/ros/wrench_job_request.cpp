@@ -11,8 +11,8 @@ std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& re
                                               const WrenchFrames& frames,
                                               const ros::Time& start_stamp, double next_step_time_s,
                                               std::string* message) {
-  const auto body = frames.body_index.find(request.body);
-  if (body == frames.body_index.end()) {
+  const std::optional<core::BodyId> body = frames.world->FindBody(request.body);
+  if (!body) {
     *message = "body: " + NotHereMessage(request.body, frames);
     return std::nullopt;
   }
@@ -44,7 +44,7 @@ std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& re
     return std::nullopt;
   }
   core::WrenchJob job;
-  job.body = body->second;
+  job.body = *body;
   job.axes = *axes;
   job.force = force;
   job.couple = couple;

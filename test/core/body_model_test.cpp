@@ -28,7 +28,8 @@ TEST(BodyModel, ParallelAxisTheorem) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<double> position(-1.0, 1.0), mass(0.1, 2.0);
   std::vector<Particle> particles(12);
-  for (Particle& p : particles) p = {mass(rng), Eigen::Vector3d(position(rng), position(rng), position(rng))};
+  for (Particle& p : particles)
+    p = {mass(rng), Eigen::Vector3d(position(rng), position(rng), position(rng))};
   const BodyModel body("cloud", particles);
   // Inertia about the reference origin, summed directly, equals Ī + M (|d|² 1 − d dᵀ).
   Eigen::Matrix3d about_origin = Eigen::Matrix3d::Zero();
@@ -38,7 +39,8 @@ TEST(BodyModel, ParallelAxisTheorem) {
   }
   const Eigen::Vector3d d = body.reference_com();
   const Eigen::Matrix3d shifted =
-      body.inertia() + body.mass() * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
+      body.inertia() +
+      body.mass() * (d.squaredNorm() * Eigen::Matrix3d::Identity() - d * d.transpose());
   EXPECT_TRUE(shifted.isApprox(about_origin, 1e-13));
   // Translating every particle changes x̄_CM but not Ī.
   for (Particle& p : particles) p.position_m += Eigen::Vector3d(3, -2, 5);
@@ -52,7 +54,8 @@ TEST(BodyModel, RandomCloudsArePhysicalTensors) {
   std::uniform_real_distribution<double> position(-2.0, 2.0), mass(0.01, 5.0);
   for (int trial = 0; trial < 100; ++trial) {
     std::vector<Particle> particles(2 + trial % 9);
-    for (Particle& p : particles) p = {mass(rng), Eigen::Vector3d(position(rng), position(rng), position(rng))};
+    for (Particle& p : particles)
+      p = {mass(rng), Eigen::Vector3d(position(rng), position(rng), position(rng))};
     const BodyModel body("cloud", particles);
     const Eigen::Matrix3d& inertia = body.inertia();
     EXPECT_TRUE(inertia.isApprox(inertia.transpose(), 1e-15));
@@ -94,9 +97,11 @@ TEST(BodyModel, CollinearRodHasExactPseudoInverse) {
   const Eigen::Vector3d null_axis = rod.principal_axes().toRotationMatrix().col(0);
   EXPECT_NEAR(std::abs(null_axis.z()), 1.0, 1e-15);
   // Moore–Penrose conditions that matter here: Ī Ī⁺ Ī = Ī, and Ī⁺ kills the axis.
-  EXPECT_TRUE((rod.inertia() * rod.inverse_inertia() * rod.inertia()).isApprox(rod.inertia(), 1e-15));
+  EXPECT_TRUE(
+      (rod.inertia() * rod.inverse_inertia() * rod.inertia()).isApprox(rod.inertia(), 1e-15));
   EXPECT_TRUE((rod.inverse_inertia() * Eigen::Vector3d::UnitZ()).isZero(1e-15));
-  EXPECT_TRUE(rod.range_projector().isApprox(Eigen::Vector3d(1, 1, 0).asDiagonal().toDenseMatrix(), 1e-15));
+  EXPECT_TRUE(
+      rod.range_projector().isApprox(Eigen::Vector3d(1, 1, 0).asDiagonal().toDenseMatrix(), 1e-15));
 }
 
 TEST(BodyModel, CubeIsIsotropic) {
@@ -119,8 +124,10 @@ TEST(BodyModel, ValidationNamesTheEntryAndTheProblem) {
   ExpectRejected({}, "body 'handle': particles must not be empty");
   ExpectRejected({{1.0, {0, 0, 0}}, {0.0, {1, 0, 0}}},
                  "body 'handle': particles[1].mass must be finite and > 0, got 0");
-  ExpectRejected({{-2.5, {0, 0, 0}}}, "body 'handle': particles[0].mass must be finite and > 0, got -2.5");
-  ExpectRejected({{nan, {0, 0, 0}}}, "body 'handle': particles[0].mass must be finite and > 0, got nan");
+  ExpectRejected({{-2.5, {0, 0, 0}}},
+                 "body 'handle': particles[0].mass must be finite and > 0, got -2.5");
+  ExpectRejected({{nan, {0, 0, 0}}},
+                 "body 'handle': particles[0].mass must be finite and > 0, got nan");
   ExpectRejected({{1.0, {0, 0, 0}}, {1.0, {0, 0, 0}}, {1.0, {0, inf, 0}}},
                  "body 'handle': particles[2].position must be 3 finite numbers");
   // Finite inputs whose sums or squares overflow.

@@ -10,9 +10,9 @@
 #include <cmath>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <Eigen/Core>
 #include <unsupported/Eigen/MatrixFunctions>
-#include <gtest/gtest.h>
 
 #include "compositions.h"
 #include "step_parts.h"

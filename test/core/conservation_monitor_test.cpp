@@ -2,9 +2,9 @@
 // its body come from a completed pass over all bodies, spread over steps.
 #include <gtest/gtest.h>
 
+#include "rigid_body_sim/core/conservation_monitor.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/world.h"
-#include "rigid_body_sim/core/conservation_monitor.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -25,7 +25,7 @@ TEST(ConservationMonitor, SweepReportsTheLargestDriftOnceAPassIsComplete) {
   // Box 1's |L| grows by 10 % behind the monitor's back (no Rebase).
   BodyState pushed = world.state(1);
   pushed.angular_momentum *= 1.1;
-  world.SetBodyState(1, pushed);
+  world.SetBodyState(world.id(1), pushed);
 
   monitor.Sweep(world, 2);  // bodies 0 and 1: the pass is not complete
   EXPECT_FALSE(monitor.last_sweep().measured);
@@ -38,7 +38,7 @@ TEST(ConservationMonitor, SweepReportsTheLargestDriftOnceAPassIsComplete) {
   EXPECT_NEAR(largest.rotational_energy, 1.1 * 1.1 - 1.0, 1e-12);  // E ∝ |L|²
 
   // A body with a held wrench conserves nothing and is left out.
-  monitor.MarkLoaded(1);
+  monitor.MarkLoaded(world.id(1));
   monitor.Sweep(world, 3);
   EXPECT_NE(monitor.last_sweep().angular_momentum_body, 1u);
   EXPECT_EQ(monitor.last_sweep().angular_momentum_norm, 0.0);

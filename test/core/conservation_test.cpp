@@ -52,9 +52,11 @@ TEST(Conservation, SplittingEnergyErrorStaysBounded) {
   for (int n = 0; n < steps; ++n) {
     splitting->Step(body, nullptr, 1e-2, &state);
     const double error = std::abs(KineticEnergy(body, state) / energy - 1.0);
-    (n < steps / 2 ? first_half : second_half) = std::max(n < steps / 2 ? first_half : second_half, error);
+    (n < steps / 2 ? first_half : second_half) =
+        std::max(n < steps / 2 ? first_half : second_half, error);
   }
-  std::cout << "splitting energy error: first half " << first_half << ", second half " << second_half << "\n";
+  std::cout << "splitting energy error: first half " << first_half << ", second half "
+            << second_half << "\n";
   EXPECT_LT(second_half, 1.25 * first_half);
   EXPECT_LT(second_half, 4e-4);
 }

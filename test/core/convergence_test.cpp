@@ -19,10 +19,14 @@ struct Band {
 
 Band BandForOrder(int order) {
   switch (order) {
-    case 1: return {1.8, 2.2};
-    case 2: return {3.6, 4.4};
-    case 4: return {14.0, 18.0};
-    default: return {56.0, 72.0};  // 2⁶ ± 12.5 %, as 14–18 is 2⁴ ± 12.5 %
+    case 1:
+      return {1.8, 2.2};
+    case 2:
+      return {3.6, 4.4};
+    case 4:
+      return {14.0, 18.0};
+    default:
+      return {56.0, 72.0};  // 2⁶ ± 12.5 %, as 14–18 is 2⁴ ± 12.5 %
   }
 }
 
@@ -74,8 +78,10 @@ TEST(Convergence, TorqueFreeOrderOfEveryScheme) {
   for (const std::string& name : IntegratorNames()) {
     const auto integrator = MakeIntegrator(name);
     if (name == "exact_free") {
-      const double coarse = OrientationError(*integrator, body, nullptr, Tumbling(), reference, t, 1e-2);
-      const double fine = OrientationError(*integrator, body, nullptr, Tumbling(), reference, t, 5e-3);
+      const double coarse =
+          OrientationError(*integrator, body, nullptr, Tumbling(), reference, t, 1e-2);
+      const double fine =
+          OrientationError(*integrator, body, nullptr, Tumbling(), reference, t, 5e-3);
       // Exact torque-free: both errors are round-off, not a convergence.
       EXPECT_LT(coarse, 1e-12);
       EXPECT_LT(fine, 1e-12);
@@ -85,7 +91,8 @@ TEST(Convergence, TorqueFreeOrderOfEveryScheme) {
       return OrientationError(*integrator, body, nullptr, Tumbling(), reference, t, step);
     });
     const Band band = BandForOrder(integrator->order());
-    std::cout << name << ": error " << coarse << " rad at dt " << dt << ", ratio " << coarse / fine << "\n";
+    std::cout << name << ": error " << coarse << " rad at dt " << dt << ", ratio " << coarse / fine
+              << "\n";
     EXPECT_GT(fine, 1e-10) << name;
     EXPECT_GE(coarse / fine, band.low) << name;
     EXPECT_LE(coarse / fine, band.high) << name;
@@ -112,7 +119,8 @@ TEST(Convergence, ForcedOrderOfEveryScheme) {
       return OrientationError(*integrator, body, &loads, initial, reference, t, step);
     });
     const Band band = BandForOrder(integrator->order());
-    std::cout << name << " (forced): error " << coarse << " rad at dt " << dt << ", ratio " << coarse / fine << "\n";
+    std::cout << name << " (forced): error " << coarse << " rad at dt " << dt << ", ratio "
+              << coarse / fine << "\n";
     EXPECT_GT(fine, 1e-10) << name;
     EXPECT_GE(coarse / fine, band.low) << name;
     EXPECT_LE(coarse / fine, band.high) << name;
@@ -181,7 +189,8 @@ TEST(Convergence, DefaultNestsCostlyLoadsKicksAsCasimirRkn4) {
   const BodyModel body = test::DiagonalBody({1.0, 2.0, 2.5});
   const BodyState by_default =
       SwayedState(*MakeIntegrator(kDefaultIntegrator), body, Tumbling(), 4.0, 0.04);
-  const BodyState by_rkn4 = SwayedState(*MakeIntegrator("casimir_rkn4"), body, Tumbling(), 4.0, 0.04);
+  const BodyState by_rkn4 =
+      SwayedState(*MakeIntegrator("casimir_rkn4"), body, Tumbling(), 4.0, 0.04);
   EXPECT_EQ(by_default.orientation.coeffs(), by_rkn4.orientation.coeffs());
   EXPECT_EQ(by_default.angular_momentum, by_rkn4.angular_momentum);
   EXPECT_EQ(by_default.position, by_rkn4.position);

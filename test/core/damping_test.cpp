@@ -43,7 +43,9 @@ std::vector<double> CandidateDts(int order) {
 }
 
 // (1 − e^{−ct})/c.
-double RescaledTime(double rate_per_s, double t_s) { return -std::expm1(-rate_per_s * t_s) / rate_per_s; }
+double RescaledTime(double rate_per_s, double t_s) {
+  return -std::expm1(-rate_per_s * t_s) / rate_per_s;
+}
 
 TEST(HeldLoadsDamping, IsKeptThroughClearAndChecked) {
   HeldLoads loads;
@@ -87,7 +89,8 @@ TEST_P(DampedScheme, LinearDampingOfAFreeBodyIsExponentialDecay) {
     EXPECT_NEAR(position_error, lag, 0.05 * lag);
   } else if (GetParam() == "rk4") {
     // x by Simpson's rule on p0 e^{−ct}: h⁵ c⁴ |p0|/(2880 M) a step.
-    const double bound = steps * std::pow(dt, 5) * std::pow(rate, 4) * p0.norm() * body.inverse_mass() / 2880;
+    const double bound =
+        steps * std::pow(dt, 5) * std::pow(rate, 4) * p0.norm() * body.inverse_mass() / 2880;
     EXPECT_LT(position_error, 2.0 * bound);
     EXPECT_GT(position_error, 0.0);
   } else {
@@ -117,8 +120,10 @@ TEST_P(DampedScheme, AngularDampingOfATorqueFreeBodyIsTheFreeMotionInRescaledTim
   EXPECT_LT((state.angular_momentum - std::exp(-rate * t) * l0).norm(), 1e-13 * l0.norm());
   EXPECT_LT(state.angular_momentum.normalized().cross(l0.normalized()).norm(), 1e-14);
   // Round-off of 400 drifts.
-  EXPECT_LT((state.position - (initial.position + t * body.inverse_mass() * initial.linear_momentum)).norm(),
-            1e-12);
+  EXPECT_LT(
+      (state.position - (initial.position + t * body.inverse_mass() * initial.linear_momentum))
+          .norm(),
+      1e-12);
 
   if (GetParam() == "exact_free") {
     // The rescaled exact flow: round-off.
@@ -149,7 +154,8 @@ TEST_P(DampedScheme, AngularDampingOfATorqueFreeBodyIsTheFreeMotionInRescaledTim
 // differences in x, p and L (all O(1) here).
 double StateError(const BodyState& a, const BodyState& b) {
   return test::AngleBetween(a.orientation, b.orientation) + (a.position - b.position).norm() +
-         (a.linear_momentum - b.linear_momentum).norm() + (a.angular_momentum - b.angular_momentum).norm();
+         (a.linear_momentum - b.linear_momentum).norm() +
+         (a.angular_momentum - b.angular_momentum).norm();
 }
 
 TEST(DampingConvergence, ForcedDampedOrderOfEveryScheme) {
@@ -235,8 +241,8 @@ TEST_P(StiffDamping, StaysFiniteAndDecaysAtAnyRateTimesDt) {
   // Stopped: the position moved by at most the damped drift of p0, |p0|/(cM),
   // plus the kicks' share. rk4 takes x by Simpson's rule on p, whose first
   // step moves it by (h/6)(1 + 4 e^{−ch/2} + e^{−ch}) p0/M instead.
-  const double start_drift = name == "rk4" ? dt / 6 * (1.0 + 4.0 * std::exp(-0.5 * rate * dt)) * p0
-                                           : p0 / rate;
+  const double start_drift =
+      name == "rk4" ? dt / 6 * (1.0 + 4.0 * std::exp(-0.5 * rate * dt)) * p0 : p0 / rate;
   EXPECT_LT((state.position - Tumbling().position).norm(),
             (start_drift + 20 * 3.0 * dt * force_bound * dt) * body.inverse_mass() * 1.01);
 }

@@ -47,9 +47,8 @@ std::vector<double> FlipTimes(Advance advance) {
 
 TEST(Dzhanibekov, ClosedFormFlipsTwelveTimes) {
   const BodyModel body = test::Diag123Body();
-  const std::vector<double> flips = FlipTimes([&](int n, BodyState* state) {
-    *state = ExactFreeBodyState(body, Initial(), n * kDt);
-  });
+  const std::vector<double> flips = FlipTimes(
+      [&](int n, BodyState* state) { *state = ExactFreeBodyState(body, Initial(), n * kDt); });
   ASSERT_EQ(flips.size(), 12u);
   EXPECT_NEAR(flips[0], 2.7411, 1e-4);
   EXPECT_NEAR((flips.back() - flips[0]) / 11.0, 5.0259, 1e-4);
@@ -57,14 +56,13 @@ TEST(Dzhanibekov, ClosedFormFlipsTwelveTimes) {
 
 TEST(Dzhanibekov, SecondAndFourthOrderSchemesMatchTheClosedForm) {
   const BodyModel body = test::Diag123Body();
-  const std::vector<double> exact = FlipTimes([&](int n, BodyState* state) {
-    *state = ExactFreeBodyState(body, Initial(), n * kDt);
-  });
+  const std::vector<double> exact = FlipTimes(
+      [&](int n, BodyState* state) { *state = ExactFreeBodyState(body, Initial(), n * kDt); });
   ASSERT_FALSE(exact.empty());
   for (const std::string& name : IntegratorNames()) {
     const auto integrator = MakeIntegrator(name);
-    const std::vector<double> flips = FlipTimes(
-        [&](int, BodyState* state) { integrator->Step(body, nullptr, kDt, state); });
+    const std::vector<double> flips =
+        FlipTimes([&](int, BodyState* state) { integrator->Step(body, nullptr, kDt, state); });
     BodyState final_state = Initial();
     for (int n = 0; n < 60000; ++n) integrator->Step(body, nullptr, kDt, &final_state);
     const double final_error = test::AngleBetween(

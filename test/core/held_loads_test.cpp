@@ -35,11 +35,13 @@ TEST(HeldLoads, EqualsTheDirectSumAtAnyOrientation) {
   loads.AddCentralForce(gravity_force);
   for (int trial = 0; trial < 10; ++trial) {
     const Eigen::Vector4d q = Eigen::Vector4d::Random();
-    const Eigen::Matrix3d a = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
+    const Eigen::Matrix3d a =
+        Eigen::Quaterniond(q[0], q[1], q[2], q[3]).normalized().toRotationMatrix();
     Eigen::Vector3d force = gravity_force, torque = world_couple + a * body_couple;
     for (int i = 0; i < 5; ++i) {
       force += world_forces[i] + a * body_forces[i];
-      torque += (a * offsets_w[i]).cross(world_forces[i]) + (a * offsets_b[i]).cross(a * body_forces[i]);
+      torque +=
+          (a * offsets_w[i]).cross(world_forces[i]) + (a * offsets_b[i]).cross(a * body_forces[i]);
     }
     const Wrench w = loads.At(0.0, a);
     EXPECT_LT((w.force - force).norm(), 1e-13);

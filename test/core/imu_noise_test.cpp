@@ -9,7 +9,9 @@ namespace rigid_body_sim::core {
 namespace {
 
 // Rotation angle of a unit quaternion [rad], sign-free.
-double AngleOf(const Eigen::Quaterniond& q) { return 2.0 * std::atan2(q.vec().norm(), std::fabs(q.w())); }
+double AngleOf(const Eigen::Quaterniond& q) {
+  return 2.0 * std::atan2(q.vec().norm(), std::fabs(q.w()));
+}
 
 TEST(ImuNoise, ZeroStddevsDrawNothing) {
   const ImuNoiseSample sample = DrawImuNoise(ImuNoise{}, 3, 1000);

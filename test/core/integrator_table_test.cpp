@@ -49,7 +49,8 @@ std::map<std::string, int> DocumentedOrders(const std::string& text) {
     const std::size_t cell = line.find('|', name_end);
     if (name_end == std::string::npos || cell == std::string::npos) continue;
     std::size_t digit = line.find_first_not_of(' ', cell + 1);
-    if (digit == std::string::npos || !std::isdigit(static_cast<unsigned char>(line[digit]))) continue;
+    if (digit == std::string::npos || !std::isdigit(static_cast<unsigned char>(line[digit])))
+      continue;
     orders[line.substr(3, name_end - 3)] = std::stoi(line.substr(digit));
   }
   return orders;
@@ -57,7 +58,9 @@ std::map<std::string, int> DocumentedOrders(const std::string& text) {
 
 // Whether `word` stands in `text` with no letter, digit or '_' on either side.
 bool ContainsWord(const std::string& text, const std::string& word) {
-  const auto is_word = [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; };
+  const auto is_word = [](char c) {
+    return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+  };
   for (std::size_t at = text.find(word); at != std::string::npos; at = text.find(word, at + 1)) {
     const bool left = at == 0 || !is_word(text[at - 1]);
     const std::size_t end = at + word.size();

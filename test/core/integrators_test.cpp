@@ -76,7 +76,8 @@ TEST_P(EveryIntegrator, ConstantPrincipalTorqueSpinsUpAsHalfTauOverIT2) {
     EXPECT_LT(angle_error, 1e-8);
   } else {
     // First order: the angle lags by ½ (τ/λ) dt T.
-    EXPECT_NEAR(angle_error, 0.5 * torque / moment * dt * steps * dt, 0.05 * torque / moment * dt * steps * dt);
+    EXPECT_NEAR(angle_error, 0.5 * torque / moment * dt * steps * dt,
+                0.05 * torque / moment * dt * steps * dt);
   }
   EXPECT_LT((state.angular_momentum - exact.angular_momentum).norm(), 1e-12);
 }
@@ -142,13 +143,16 @@ TEST_P(EveryIntegrator, PushedPointMassAcceleratesAsFOverMThroughTheWorld) {
     ASSERT_EQ(point.rank(), 0) << "m = " << m;
     BodyState initial;
     initial.position = {uniform(rng), uniform(rng), uniform(rng)};
-    initial.orientation = Eigen::Quaterniond(uniform(rng), uniform(rng), uniform(rng), uniform(rng)).normalized();
-    if (trial % 2 == 1) initial.linear_momentum = m * Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng));
+    initial.orientation =
+        Eigen::Quaterniond(uniform(rng), uniform(rng), uniform(rng), uniform(rng)).normalized();
+    if (trial % 2 == 1)
+      initial.linear_momentum = m * Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng));
     WorldOptions options;
     options.integrator = GetParam();
     options.dt_s = dt;
     World world({point}, {initial}, options);
     ParticleWrench push;
+    push.body = world.id(0);
     push.force = Eigen::Vector3d(0.0, 0.7, -1.4) * (1.0 + uniform(rng));
     push.axes = trial % 3 == 0 ? WrenchAxes::kBody : WrenchAxes::kWorld;
     world.HoldWrench(push);
@@ -156,8 +160,9 @@ TEST_P(EveryIntegrator, PushedPointMassAcceleratesAsFOverMThroughTheWorld) {
     ASSERT_EQ(world.fault(0), BodyFault::kNone) << ToString(world.fault(0)) << ", m = " << m;
     const BodyState& state = world.state(0);
     // The orientation never turns, so a body-axes force is a fixed world force.
-    const Eigen::Vector3d force =
-        push.axes == WrenchAxes::kBody ? Eigen::Vector3d(initial.orientation * push.force) : push.force;
+    const Eigen::Vector3d force = push.axes == WrenchAxes::kBody
+                                      ? Eigen::Vector3d(initial.orientation * push.force)
+                                      : push.force;
     const double t = steps * dt;
     // Δp = F t: 100 additions of F dt, round-off only.
     EXPECT_LT((state.linear_momentum - (initial.linear_momentum + t * force)).norm(), 1e-13);
@@ -184,7 +189,8 @@ TEST(CasimirSplitting, SymmetricTopsAndSpheresAreExactAtAnyDt) {
   const BodyModel sphere = test::DiagonalBody({1.5, 1.5, 1.5});
   for (const BodyModel* body : {&top, &sphere}) {
     BodyState state;
-    state.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized()));
+    state.orientation =
+        Eigen::Quaterniond(Eigen::AngleAxisd(0.4, Eigen::Vector3d(1, -2, 0.5).normalized()));
     state.angular_momentum = {0.7, -1.1, 2.3};
     const BodyState initial = state;
     for (const char* name :
@@ -193,7 +199,9 @@ TEST(CasimirSplitting, SymmetricTopsAndSpheresAreExactAtAnyDt) {
       const auto integrator = MakeIntegrator(name);
       for (int n = 0; n < 40; ++n) integrator->Step(*body, nullptr, 0.25, &state);
       // Round-off of 40 steps of O(1) rotations.
-      EXPECT_LT(test::AngleBetween(state.orientation, ExactFreeBodyState(*body, initial, 10.0).orientation), 1e-13)
+      EXPECT_LT(test::AngleBetween(state.orientation,
+                                   ExactFreeBodyState(*body, initial, 10.0).orientation),
+                1e-13)
           << name << " on " << (body == &top ? "top" : "sphere");
     }
   }

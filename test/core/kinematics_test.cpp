@@ -16,13 +16,15 @@ TEST(Kinematics, StateFromTwistRoundTrips) {
   EXPECT_TRUE(LinearVelocity(body, state).isApprox(v, 1e-15));
   EXPECT_TRUE(AngularVelocity(body, state).isApprox(w, 1e-14));
   // E = ½ M v² + ½ ωᵀ I ω.
-  const double energy = 0.5 * body.mass() * v.squaredNorm() + 0.5 * w.dot(WorldInertia(body, state) * w);
+  const double energy =
+      0.5 * body.mass() * v.squaredNorm() + 0.5 * w.dot(WorldInertia(body, state) * w);
   EXPECT_NEAR(KineticEnergy(body, state), energy, 1e-14 * energy);
 }
 
 TEST(Kinematics, ParticleVelocitiesAreVPlusOmegaCrossR) {
   const BodyModel rod = test::RodBody();
-  const BodyState state = StateFromTwist(rod, {0, 0, 1}, Eigen::Quaterniond::Identity(), {1, 0, 0}, {0, 2, 0});
+  const BodyState state =
+      StateFromTwist(rod, {0, 0, 1}, Eigen::Quaterniond::Identity(), {1, 0, 0}, {0, 2, 0});
   std::vector<Eigen::Vector3d> positions, velocities;
   ParticlePositions(rod, state, &positions);
   ParticleVelocities(rod, state, &velocities);

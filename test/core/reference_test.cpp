@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include <boost/math/special_functions/ellint_1.hpp>
 #include <gtest/gtest.h>
+#include <boost/math/special_functions/ellint_1.hpp>
 
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
@@ -97,15 +97,16 @@ TEST(ReferenceTorqueFree, SatisfiesEulerEquations) {
     const double fastest = g / c.moments[0];
     const double momentum_tolerance =
         10.0 * (h * h / 6.0 * g * std::pow(fastest, 3) + kEpsilon * g / h);
-    const double rate_tolerance =
-        10.0 * (h * h / 6.0 * std::pow(fastest, 3) + kEpsilon / h);
+    const double rate_tolerance = 10.0 * (h * h / 6.0 * std::pow(fastest, 3) + kEpsilon / h);
     for (double t = 0.1; t <= 30.0; t += 0.53) {
       const Vector3d momentum = motion.BodyMomentum(t);
       const Vector3d omega = momentum.cwiseQuotient(c.moments);
-      const Vector3d momentum_rate = (motion.BodyMomentum(t + h) - motion.BodyMomentum(t - h)) / (2 * h);
+      const Vector3d momentum_rate =
+          (motion.BodyMomentum(t + h) - motion.BodyMomentum(t - h)) / (2 * h);
       EXPECT_LT((momentum_rate - momentum.cross(omega)).norm(), momentum_tolerance) << t;
       // q(t−h)⁻¹ q(t+h) = exp(2h ω) + O(h³): the body-axes rate.
-      const Eigen::AngleAxisd turn(motion.Orientation(t - h).conjugate() * motion.Orientation(t + h));
+      const Eigen::AngleAxisd turn(motion.Orientation(t - h).conjugate() *
+                                   motion.Orientation(t + h));
       const Vector3d body_rate = turn.angle() * turn.axis() / (2 * h);
       EXPECT_LT((body_rate - omega).norm(), rate_tolerance) << t;
     }
@@ -125,8 +126,8 @@ Quaterniond ReferenceOrientation(const BodyModel& model, const BodyState& initia
 TEST(ReferenceTorqueFree, AgreesWithFineRk4) {
   const std::unique_ptr<Integrator> rk4 = MakeIntegrator("rk4");
   const BodyModel body = test::DiagonalBody(Vector3d(1.0, 1.7, 2.4));
-  const std::vector<Vector3d> rates = {{0.3, 1.2, -0.8},   // about the major axis
-                                       {1.5, 0.4, 0.3}};   // about the minor axis
+  const std::vector<Vector3d> rates = {{0.3, 1.2, -0.8},  // about the major axis
+                                       {1.5, 0.4, 0.3}};  // about the minor axis
   for (const Vector3d& rate : rates) {
     BodyState state = StateFromTwist(body, Vector3d::Zero(), kTilted, Vector3d::Zero(), rate);
     const BodyState initial = state;
@@ -135,8 +136,8 @@ TEST(ReferenceTorqueFree, AgreesWithFineRk4) {
     for (int n = 1; n <= 80000; ++n) {
       rk4->Step(body, nullptr, dt, &state);
       if (n % 400 == 0) {
-        worst = std::max(worst, AngleBetween(ReferenceOrientation(body, initial, n * dt),
-                                             state.orientation));
+        worst = std::max(
+            worst, AngleBetween(ReferenceOrientation(body, initial, n * dt), state.orientation));
       }
     }
     EXPECT_LT(worst, 1e-10) << rate.transpose();
@@ -152,16 +153,16 @@ TEST(ReferenceTorqueFree, ApproachesSymmetricTop) {
   for (const double epsilon : {1e-5, 1e-8}) {
     const double transverse = 1.3;
     const double axial = 2.1;
-    const TorqueFreeMotion nearly(Vector3d(transverse, transverse * (1 + epsilon), axial),
-                                  momentum, kTilted);
+    const TorqueFreeMotion nearly(Vector3d(transverse, transverse * (1 + epsilon), axial), momentum,
+                                  kTilted);
     const SymmetricTopMotion top(transverse, axial, momentum, kTilted);
     const double fastest = momentum.norm() / transverse;
     const double bound = 10.0 * epsilon * (1.0 + fastest * horizon);
     double worst_momentum = 0.0;
     double worst_angle = 0.0;
     for (double t = 0.0; t <= horizon; t += 0.1) {
-      worst_momentum = std::max(worst_momentum,
-                                (nearly.BodyMomentum(t) - top.BodyMomentum(t)).norm() / momentum.norm());
+      worst_momentum = std::max(
+          worst_momentum, (nearly.BodyMomentum(t) - top.BodyMomentum(t)).norm() / momentum.norm());
       worst_angle = std::max(worst_angle, AngleBetween(nearly.Orientation(t), top.Orientation(t)));
     }
     EXPECT_LT(worst_momentum, bound) << epsilon;
@@ -179,7 +180,8 @@ TEST(ReferenceTorqueFree, ApproachesProlateSymmetricTop) {
   const SymmetricTopMotion top(2.0, 0.8, relabel.conjugate() * momentum, kTilted * relabel);
   const double bound = 10.0 * epsilon * (1.0 + momentum.norm() / 0.8 * 20.0);
   for (double t = 0.0; t <= 20.0; t += 0.1) {
-    EXPECT_LT((nearly.BodyMomentum(t) - relabel * top.BodyMomentum(t)).norm() / momentum.norm(), bound);
+    EXPECT_LT((nearly.BodyMomentum(t) - relabel * top.BodyMomentum(t)).norm() / momentum.norm(),
+              bound);
     EXPECT_LT(AngleBetween(nearly.Orientation(t), top.Orientation(t) * relabel.conjugate()), bound);
   }
 }
@@ -200,7 +202,8 @@ TEST(ReferenceSymmetricTop, SatisfiesEulerEquations) {
   for (double t = 0.0; t <= 30.0; t += 0.7) {
     const Vector3d omega = top.BodyMomentum(t).cwiseQuotient(moments);
     const Vector3d momentum_rate = (top.BodyMomentum(t + h) - top.BodyMomentum(t - h)) / (2 * h);
-    EXPECT_LT((momentum_rate - top.BodyMomentum(t).cross(omega)).norm(), tolerance * momentum.norm());
+    EXPECT_LT((momentum_rate - top.BodyMomentum(t).cross(omega)).norm(),
+              tolerance * momentum.norm());
     const Eigen::AngleAxisd turn(top.Orientation(t - h).conjugate() * top.Orientation(t + h));
     EXPECT_LT((turn.angle() * turn.axis() / (2 * h) - omega).norm(), tolerance);
   }
@@ -321,9 +324,10 @@ TEST(ExactFree, TorqueFreeStepsAreExactAtLargeDt) {
           << dt << " " << n;
     }
     EXPECT_EQ(state.angular_momentum, initial.angular_momentum);
-    EXPECT_LT((state.position - (initial.position + steps * dt * initial.linear_momentum / body.mass()))
-                  .norm(),
-              1e-13);
+    EXPECT_LT(
+        (state.position - (initial.position + steps * dt * initial.linear_momentum / body.mass()))
+            .norm(),
+        1e-13);
   }
 }
 
@@ -335,8 +339,8 @@ TEST(ExactFree, ConstantForceIsExact) {
   HeldLoads gravity;
   const Vector3d force = body.mass() * Vector3d(0, 0, -9.81);
   gravity.AddCentralForce(force);
-  BodyState state = StateFromTwist(body, Vector3d::Zero(), kTilted, Vector3d(1, 0, 2),
-                                   Vector3d(0.3, 1.2, -0.8));
+  BodyState state =
+      StateFromTwist(body, Vector3d::Zero(), kTilted, Vector3d(1, 0, 2), Vector3d(0.3, 1.2, -0.8));
   const BodyState initial = state;
   const double dt = 0.25;
   for (int n = 0; n < 8; ++n) integrator.Step(body, &gravity, dt, &state);
@@ -356,12 +360,13 @@ TEST(ExactFree, DegenerateBodiesStayFinite) {
                                    Vector3d(3.0, 0.0, 0.0));
   for (int n = 0; n < 10; ++n) integrator.Step(rod, nullptr, 0.5, &state);
   ASSERT_TRUE(state.orientation.coeffs().allFinite());
-  EXPECT_LT(AngleBetween(state.orientation, Quaterniond(Eigen::AngleAxisd(15.0, Vector3d::UnitX()))),
-            1e-13);
+  EXPECT_LT(
+      AngleBetween(state.orientation, Quaterniond(Eigen::AngleAxisd(15.0, Vector3d::UnitX()))),
+      1e-13);
   // A particle only translates.
   const BodyModel point = test::PointBody();
-  BodyState particle = StateFromTwist(point, Vector3d::Zero(), kTilted, Vector3d(1, 0, 0),
-                                      Vector3d(0.0, 4.0, 0.0));
+  BodyState particle =
+      StateFromTwist(point, Vector3d::Zero(), kTilted, Vector3d(1, 0, 0), Vector3d(0.0, 4.0, 0.0));
   for (int n = 0; n < 10; ++n) integrator.Step(point, nullptr, 0.5, &particle);
   ASSERT_TRUE(particle.orientation.coeffs().allFinite());
   EXPECT_LT(AngleBetween(particle.orientation, kTilted), 1e-15);

@@ -66,8 +66,8 @@ TEST_P(CasimirComposition, TorqueFreeRoundOffWalksLikeTheRootOfTheSteps) {
   for (long n = 0; n < kSteps; ++n) world.Step();
   const double lanes_error = test::AngleBetween(world.states()[0].orientation, exact);
   EXPECT_LT(lanes_error, RandomWalkBound()) << "in lanes";
-  std::printf("  %s after %ld steps: %.2e rad one by one, %.2e in lanes (bound %.2e)\n", GetParam().c_str(),
-              kSteps, alone_error, lanes_error, RandomWalkBound());
+  std::printf("  %s after %ld steps: %.2e rad one by one, %.2e in lanes (bound %.2e)\n",
+              GetParam().c_str(), kSteps, alone_error, lanes_error, RandomWalkBound());
   EXPECT_NEAR(world.states()[0].orientation.norm(), 1.0, 1e-15);
 }
 

@@ -45,10 +45,10 @@ TEST(StateHash, IsFnv1aOverTheThirteenPublishedValuesInSceneOrder) {
   Fnv1a64 expected;
   for (const BodyState& state : states) {
     const double values[13] = {
-        state.position.x(),         state.position.y(),         state.position.z(),
-        state.orientation.x(),      state.orientation.y(),      state.orientation.z(),
-        state.orientation.w(),      state.linear_momentum.x(),  state.linear_momentum.y(),
-        state.linear_momentum.z(),  state.angular_momentum.x(), state.angular_momentum.y(),
+        state.position.x(),        state.position.y(),         state.position.z(),
+        state.orientation.x(),     state.orientation.y(),      state.orientation.z(),
+        state.orientation.w(),     state.linear_momentum.x(),  state.linear_momentum.y(),
+        state.linear_momentum.z(), state.angular_momentum.x(), state.angular_momentum.y(),
         state.angular_momentum.z()};
     for (double value : values) expected.AddDouble(value);
   }

@@ -17,6 +17,12 @@ namespace {
 // 19 free bodies (two full blocks of eight lanes and three more): asymmetric,
 // symmetric and isotropic, principal axes off the reference axes, masses from
 // 1 to 6 kg, and one spinning too fast for the lanes' series.
+// The bodies `indices` of `world` as a batch that steps `states` under `loads`.
+BodyBatch Batch(const World& world, const std::vector<HeldLoads>& loads,
+                const std::vector<std::size_t>& indices, std::vector<BodyState>* states) {
+  return {world.models().data(), loads.data(), states->data(), indices.data(), indices.size()};
+}
+
 World MakeFreeWorld(const std::string& integrator, double dt_s) {
   std::mt19937 random(7);
   std::uniform_real_distribution<double> unit(-1.0, 1.0);
@@ -36,7 +42,8 @@ World MakeFreeWorld(const std::string& integrator, double dt_s) {
     models.emplace_back("body" + std::to_string(i), particles);
     BodyState state;
     state.position = {unit(random), unit(random), unit(random)};
-    state.orientation = Eigen::Quaterniond(unit(random), unit(random), unit(random), unit(random)).normalized();
+    state.orientation =
+        Eigen::Quaterniond(unit(random), unit(random), unit(random), unit(random)).normalized();
     state.linear_momentum = {unit(random), unit(random), unit(random)};
     state.angular_momentum = 3.0 * Eigen::Vector3d(unit(random), unit(random), unit(random));
     states.push_back(state);
@@ -99,7 +106,7 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
     loads[i].AddCentralForce(world.model(i).mass() * options.gravity);
     if (i % 5 == 4) continue;
     ParticleWrench push;
-    push.body = i;
+    push.body = world.id(i);
     push.particle = i % world.model(i).particle_count();
     push.axes = i % 2 ? WrenchAxes::kBody : WrenchAxes::kWorld;
     push.force = Eigen::Vector3d(0.5, -1.0, 0.25) * (1.0 + 0.1 * i);
@@ -135,8 +142,10 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
     EXPECT_EQ(world.fault(i), BodyFault::kNone);
     EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation), tolerance);
     EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance * 10);
-    EXPECT_LT((world.state(i).linear_momentum - expected[i].linear_momentum).norm(), tolerance * 10);
-    EXPECT_LT((world.state(i).angular_momentum - expected[i].angular_momentum).norm(), tolerance * 10);
+    EXPECT_LT((world.state(i).linear_momentum - expected[i].linear_momentum).norm(),
+              tolerance * 10);
+    EXPECT_LT((world.state(i).angular_momentum - expected[i].angular_momentum).norm(),
+              tolerance * 10);
   }
 }
 
@@ -171,7 +180,7 @@ TEST_P(EveryScheme, StepLoadedOfADampedBatchIsStepBodyByBody) {
   const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
   const int steps = GetParam() == "exact_free" ? 50 : 1000;
   for (int n = 0; n < steps; ++n) {
-    integrator->StepLoaded(world.models(), bodies, loads, dt, &states);
+    integrator->StepLoaded(Batch(world, loads, bodies, &states), dt);
     for (std::size_t i = 0; i < world.size(); ++i) {
       integrator->Step(world.model(i), &loads[i], dt, &expected[i]);
     }
@@ -212,9 +221,9 @@ TEST_P(EveryScheme, StepLoadedOfABodyDoesNotDependOnItsBatch) {
   const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
   const int steps = GetParam() == "exact_free" ? 20 : 300;
   for (int n = 0; n < steps; ++n) {
-    integrator->StepLoaded(world.models(), bodies, loads, dt, &together);
+    integrator->StepLoaded(Batch(world, loads, bodies, &together), dt);
     for (std::size_t i = 0; i < world.size(); ++i) {
-      integrator->StepLoaded(world.models(), {i}, loads, dt, &alone);
+      integrator->StepLoaded(Batch(world, loads, {i}, &alone), dt);
     }
   }
   for (std::size_t i = 0; i < world.size(); ++i) {
@@ -228,7 +237,7 @@ TEST_P(EveryScheme, ABadBodyInABatchIsFrozenAloneAndTheOthersAreUntouched) {
   World reference = MakeFreeWorld(GetParam(), 1e-3);
   BodyState bad = world.state(4);
   bad.angular_momentum.x() = std::nan("");
-  world.SetBodyState(4, bad);
+  world.SetBodyState(world.id(4), bad);
   for (int n = 0; n < 10; ++n) {
     world.Step();
     reference.Step();

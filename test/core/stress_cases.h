@@ -20,7 +20,8 @@
 namespace rigid_body_sim::core::test {
 
 // A generic initial attitude, so that no axis starts aligned with the world's.
-inline const Eigen::Quaterniond kTilt(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, 3).normalized()));
+inline const Eigen::Quaterniond kTilt(Eigen::AngleAxisd(0.7,
+                                                        Eigen::Vector3d(1, 2, 3).normalized()));
 
 // Finite everywhere, and q still a unit quaternion (every scheme normalises q
 // each step, so 1e-9 only catches a scheme that stopped doing so or overflowed).
@@ -38,22 +39,26 @@ inline double OrthonormalityError(const BodyState& s) {
 // 0.5 kg at ±1 m on x, 1 g at ±2 cm on y and ±1 cm on z:
 // Ī = diag(1e-6, 1.0000002, 1.0000008) kg m², λ1/λ3 = 1e-6, three distinct moments.
 inline BodyModel NeedleBody() {
-  return BodyModel("needle", {{0.5, {1, 0, 0}}, {0.5, {-1, 0, 0}},
-                              {1e-3, {0, 0.02, 0}}, {1e-3, {0, -0.02, 0}},
-                              {1e-3, {0, 0, 0.01}}, {1e-3, {0, 0, -0.01}}});
+  return BodyModel("needle", {{0.5, {1, 0, 0}},
+                              {0.5, {-1, 0, 0}},
+                              {1e-3, {0, 0.02, 0}},
+                              {1e-3, {0, -0.02, 0}},
+                              {1e-3, {0, 0, 0.01}},
+                              {1e-3, {0, 0, -0.01}}});
 }
 
 // 0.5 kg at ±1 m on x, 50 g at ±√1e-3 m on y: planar, Ī = diag(1e-4, 1, 1.0001).
 inline BodyModel NearRodBody() {
   const double b = std::sqrt(1e-3);
-  return BodyModel("near_rod", {{0.5, {1, 0, 0}}, {0.5, {-1, 0, 0}}, {0.05, {0, b, 0}}, {0.05, {0, -b, 0}}});
+  return BodyModel("near_rod",
+                   {{0.5, {1, 0, 0}}, {0.5, {-1, 0, 0}}, {0.05, {0, b, 0}}, {0.05, {0, -b, 0}}});
 }
 
 // Period of Π(t) of the torque-free motion from `s` (inf when Π is constant).
 inline double MomentumPeriod(const BodyModel& body, const BodyState& s) {
   const Eigen::Quaterniond principal = s.orientation * body.principal_axes();
-  const TorqueFreeMotion motion(body.principal_moments(), principal.conjugate() * s.angular_momentum,
-                                principal);
+  const TorqueFreeMotion motion(body.principal_moments(),
+                                principal.conjugate() * s.angular_momentum, principal);
   return motion.period();
 }
 
@@ -73,9 +78,10 @@ inline bool DrawWrenches(std::mt19937_64* rng, double max_force, double max_coup
     const int count = 1 + static_cast<int>(3.0 * unit(*rng)) % 3;
     for (int i = 0; i < count; ++i) {
       ParticleWrench w;
-      w.body = b;
-      w.particle = std::min(world->model(b).particle_count() - 1,
-                            static_cast<std::size_t>(unit(*rng) * world->model(b).particle_count()));
+      w.body = world->id(b);
+      w.particle =
+          std::min(world->model(b).particle_count() - 1,
+                   static_cast<std::size_t>(unit(*rng) * world->model(b).particle_count()));
       w.axes = unit(*rng) < 0.5 ? WrenchAxes::kWorld : WrenchAxes::kBody;
       w.force = random_vector(max_force);
       if (unit(*rng) < 0.5) w.couple = random_vector(max_couple);

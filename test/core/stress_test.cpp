@@ -43,19 +43,15 @@ using Eigen::Vector3d;
 
 constexpr double kDt = 1e-3;
 
-
 bool IsSymplecticSplitting(const std::string& name) {
   return name == "splitting" || name == "splitting4" || name == "casimir_splitting" ||
          name == "casimir_splitting4" || name == "casimir_rkn4" || name == "casimir_rkn6";
 }
 bool IsExact(const std::string& name) { return name == "exact_free"; }
 
-
-
-
-
 BodyState FromBodyOmega(const BodyModel& body, const Vector3d& omega_body) {
-  return StateFromTwist(body, Vector3d::Zero(), test::kTilt, Vector3d::Zero(), test::kTilt * omega_body);
+  return StateFromTwist(body, Vector3d::Zero(), test::kTilt, Vector3d::Zero(),
+                        test::kTilt * omega_body);
 }
 
 BodyState FromBodyMomentum(const Vector3d& momentum_body) {
@@ -64,7 +60,6 @@ BodyState FromBodyMomentum(const Vector3d& momentum_body) {
   s.angular_momentum = test::kTilt * momentum_body;
   return s;
 }
-
 
 // The energy bound of a symplectic splitting of order p. It conserves a
 // modified Hamiltonian H̃ = H + h^p H_p + …, H_p made of nested Poisson
@@ -90,7 +85,8 @@ struct SpinRun {
 };
 
 // Torque-free from `initial` for max(1 s, `periods` periods of Π(t)).
-SpinRun RunSpin(const Integrator& integrator, const BodyModel& body, const BodyState& initial, int periods) {
+SpinRun RunSpin(const Integrator& integrator, const BodyModel& body, const BodyState& initial,
+                int periods) {
   SpinRun run;
   const double period = test::MomentumPeriod(body, initial);
   const double duration = std::isfinite(period) ? std::max(1.0, periods * period) : 1.0;
@@ -107,7 +103,8 @@ SpinRun RunSpin(const Integrator& integrator, const BodyModel& body, const BodyS
     double& half = 2 * n <= run.steps ? run.energy_first : run.energy_second;
     half = std::max(half, error);
     if (n == 1000) {
-      run.angle_1s = test::AngleBetween(ExactFreeBodyState(body, initial, 1.0).orientation, s.orientation);
+      run.angle_1s =
+          test::AngleBetween(ExactFreeBodyState(body, initial, 1.0).orientation, s.orientation);
     }
   }
   return run;
@@ -121,7 +118,8 @@ TEST(Stress, SpinSweepUpToHOmegaOne) {
   // halves; below, one period is longer than the 1 s run and only the bound
   // is checked.
   const BodyModel body = test::Diag123Body();
-  const Vector3d directions[2] = {Vector3d(1, 1, 1).normalized(), Vector3d(0.01, 1, 0.01).normalized()};
+  const Vector3d directions[2] = {Vector3d(1, 1, 1).normalized(),
+                                  Vector3d(0.01, 1, 0.01).normalized()};
   const double omegas[] = {1.0, 3.0, 10.0, 30.0, 100.0, 300.0, 1000.0};
   for (const std::string& name : IntegratorNames()) {
     const auto integrator = MakeIntegrator(name);
@@ -134,9 +132,11 @@ TEST(Stress, SpinSweepUpToHOmegaOne) {
                                   std::to_string(direction.x()) + ", …)";
         ASSERT_TRUE(run.finite) << where;
         const double worst = std::max(run.energy_first, run.energy_second);
-        std::printf("  %-18s h|ω| %-6g %s  ΔE/E %.2e / %.2e (halves, %ld steps)  orientation err 1 s %.2e rad\n",
-                    name.c_str(), h_omega, direction.x() > 0.1 ? "generic" : "axis 2 ", run.energy_first,
-                    run.energy_second, run.steps, run.angle_1s);
+        std::printf(
+            "  %-18s h|ω| %-6g %s  ΔE/E %.2e / %.2e (halves, %ld steps)  orientation err 1 s %.2e "
+            "rad\n",
+            name.c_str(), h_omega, direction.x() > 0.1 ? "generic" : "axis 2 ", run.energy_first,
+            run.energy_second, run.steps, run.angle_1s);
         if (IsSymplecticSplitting(name)) {
           EXPECT_LT(worst, SplittingEnergyBound(integrator->order(), h_omega)) << where;
           // No drift: the second half's maximum is the first half's up to the
@@ -166,11 +166,12 @@ TEST(Stress, SpinSweepThroughTheWorldUpToHOmegaTen) {
   // scheme at 0.04 rad per substep is ~5e-9 (∝ angle⁴: 1e-7 at 0.1 rad);
   // |L| is conserved by every flow of the Casimir split, to round-off.
   const BodyModel body = test::Diag123Body();
-  const Vector3d directions[2] = {Vector3d(1, 1, 1).normalized(), Vector3d(0.01, 1, 0.01).normalized()};
+  const Vector3d directions[2] = {Vector3d(1, 1, 1).normalized(),
+                                  Vector3d(0.01, 1, 0.01).normalized()};
   for (const double omega : {10.0, 100.0, 1000.0, 10000.0}) {
     for (const Vector3d& direction : directions) {
-      const BodyState initial = StateFromTwist(body, Vector3d::Zero(), test::kTilt, Vector3d::Zero(),
-                                               test::kTilt * (omega * direction));
+      const BodyState initial = StateFromTwist(body, Vector3d::Zero(), test::kTilt,
+                                               Vector3d::Zero(), test::kTilt * (omega * direction));
       WorldOptions options;
       options.dt_s = kDt;
       World world({body}, {initial}, options);
@@ -181,14 +182,17 @@ TEST(Stress, SpinSweepThroughTheWorldUpToHOmegaTen) {
       for (int n = 0; n < 1000; ++n) {
         world.Step();
         substeps = std::max(substeps, world.last_step_substeps_max());
-        energy_error = std::max(energy_error, std::abs(KineticEnergy(body, world.state(0)) / e0 - 1.0));
-        momentum_error = std::max(momentum_error, std::abs(world.state(0).angular_momentum.norm() / l0 - 1.0));
+        energy_error =
+            std::max(energy_error, std::abs(KineticEnergy(body, world.state(0)) / e0 - 1.0));
+        momentum_error =
+            std::max(momentum_error, std::abs(world.state(0).angular_momentum.norm() / l0 - 1.0));
       }
       const std::string where = "h|ω| = " + std::to_string(kDt * omega) + ", ω ∥ (" +
                                 std::to_string(direction.x()) + ", …)";
       ASSERT_EQ(world.fault(0), BodyFault::kNone) << where;
       std::printf("  h|ω| %-5g %s  substeps %4u  ΔE/E %.2e  Δ|L|/|L| %.2e\n", kDt * omega,
-                  direction.x() > 0.1 ? "generic" : "axis 2 ", substeps, energy_error, momentum_error);
+                  direction.x() > 0.1 ? "generic" : "axis 2 ", substeps, energy_error,
+                  momentum_error);
       EXPECT_LT(energy_error, 1e-8) << where;
       EXPECT_LT(momentum_error, 1e-12) << where;
       // Beyond h|ω| = 1 the scheme's own step could not resolve the turn.
@@ -235,10 +239,11 @@ TEST(Stress, NeedleAndNearRodStayFinite) {
         energy = std::max(energy, std::abs(KineticEnergy(*c.body, s) / e0 - 1.0));
       }
       EXPECT_LE(test::OrthonormalityError(s), 1e-12) << name << ", " << c.label;
-      const double angle =
-          test::AngleBetween(ExactFreeBodyState(*c.body, c.initial, 1.0).orientation, s.orientation);
-      std::printf("  %-18s %-20s h|ω| %-8.3g ΔE/E %.2e  orientation err 1 s %.2e rad\n", name.c_str(), c.label,
-                  kDt * AngularVelocity(*c.body, c.initial).norm(), energy, angle);
+      const double angle = test::AngleBetween(
+          ExactFreeBodyState(*c.body, c.initial, 1.0).orientation, s.orientation);
+      std::printf("  %-18s %-20s h|ω| %-8.3g ΔE/E %.2e  orientation err 1 s %.2e rad\n",
+                  name.c_str(), c.label, kDt * AngularVelocity(*c.body, c.initial).norm(), energy,
+                  angle);
       if (IsExact(name)) {
         // Round-off, amplified by the thin axis: the closed form's precession
         // angle loses up to a factor λ3/λ1 of its relative accuracy (see
@@ -251,7 +256,6 @@ TEST(Stress, NeedleAndNearRodStayFinite) {
   }
 }
 
-
 // L in the range of I for the rod (null axis = its principal axis 1) and the
 // particle (L = 0): World::Step projects L after every step, so what is left
 // is round-off. |L·n| is a sum of three products of size |L|, each off by
@@ -261,14 +265,16 @@ TEST(Stress, NeedleAndNearRodStayFinite) {
 void ExpectLInRange(const BodyModel& model, const BodyState& s, const std::string& where) {
   if (model.is_full_rank()) return;
   if (model.rank() == 0) {
-    EXPECT_TRUE(s.angular_momentum.isZero(0.0)) << where << ": L = " << s.angular_momentum.transpose();
+    EXPECT_TRUE(s.angular_momentum.isZero(0.0))
+        << where << ": L = " << s.angular_momentum.transpose();
     return;
   }
   ASSERT_EQ(model.rank(), 2) << where;
   const double norm = s.angular_momentum.norm();
   const Vector3d axis = s.orientation * (model.principal_axes() * Vector3d::UnitX());
   EXPECT_LE(std::abs(axis.dot(s.angular_momentum)), 1e-13 * norm) << where;
-  EXPECT_LE((WorldInertia(model, s) * AngularVelocity(model, s) - s.angular_momentum).norm(), 1e-12 * norm)
+  EXPECT_LE((WorldInertia(model, s) * AngularVelocity(model, s) - s.angular_momentum).norm(),
+            1e-12 * norm)
       << where;
 }
 
@@ -286,7 +292,8 @@ TEST(Stress, RodAndParticleUnderForcesAndCouplesKeepLInTheRangeOfI) {
       }
       world.Step();
       for (std::size_t b = 0; b < 2; ++b) {
-        const std::string where = name + ", " + world.model(b).name() + ", step " + std::to_string(n);
+        const std::string where =
+            name + ", " + world.model(b).name() + ", step " + std::to_string(n);
         ASSERT_TRUE(test::Finite(world.state(b))) << where;
         // |L| of the rod random-walks to ~1e2 kg m²/s, |ω| <= |L|/0.5 stays far
         // below π/h: nothing here may be frozen.
@@ -325,13 +332,17 @@ TEST(Stress, MillionTorqueFreeSteps) {
       ASSERT_TRUE(test::Finite(s)) << name << ", step " << n;
       orthonormality = std::max(orthonormality, test::OrthonormalityError(s));
       l_drift = std::max(l_drift, std::abs(s.angular_momentum.norm() / l0 - 1.0));
-      pi_drift = std::max(pi_drift, std::abs((s.orientation.conjugate() * s.angular_momentum).norm() / l0 - 1.0));
+      pi_drift = std::max(
+          pi_drift, std::abs((s.orientation.conjugate() * s.angular_momentum).norm() / l0 - 1.0));
       const double error = std::abs(KineticEnergy(body, s) / e0 - 1.0);
       (2 * n <= steps ? first : second) = std::max(2 * n <= steps ? first : second, error);
     }
-    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    std::printf("  %-18s ‖AᵀA−I‖ %.1e  |ΔL|/|L| %.1e  |ΔΠ|/|L| %.1e  ΔE/E %.2e / %.2e (halves)  %.0f ns/step\n",
-                name.c_str(), orthonormality, l_drift, pi_drift, first, second, 1e9 * seconds / steps);
+    const double seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    std::printf(
+        "  %-18s ‖AᵀA−I‖ %.1e  |ΔL|/|L| %.1e  |ΔΠ|/|L| %.1e  ΔE/E %.2e / %.2e (halves)  %.0f "
+        "ns/step\n",
+        name.c_str(), orthonormality, l_drift, pi_drift, first, second, 1e9 * seconds / steps);
     // q is normalised every step, so A = R(q) is orthonormal to a few ε
     // (measured 3e-15) however long the run: 1e-12 catches any accumulation.
     EXPECT_LE(orthonormality, 1e-12) << name;
@@ -340,7 +351,8 @@ TEST(Stress, MillionTorqueFreeSteps) {
     EXPECT_LE(l_drift, 1e-15) << name;
     EXPECT_LE(pi_drift, 1e-12) << name;
     if (IsSymplecticSplitting(name)) {
-      EXPECT_LT(std::max(first, second), SplittingEnergyBound(integrator->order(), h_omega)) << name;
+      EXPECT_LT(std::max(first, second), SplittingEnergyBound(integrator->order(), h_omega))
+          << name;
       EXPECT_LE(second, 1.25 * first + 1e-13) << name;
     }
     if (IsExact(name)) {
@@ -368,8 +380,10 @@ TEST(Stress, RandomParticleForcesKeepEveryStateFinite) {
   // be frozen; with the default scheme, which turns the thin bodies about
   // their axes exactly, no body is frozen in any of three seeds (1e5 steps
   // each in bench/stability_stress).
-  std::vector<BodyModel> models = {test::Diag123Body(), BodyModel("box", MakeBox(1.0, {0.1, 0.2, 0.3}, 2)),
-                                   test::RodBody(), test::PointBody(), test::NearRodBody(), test::NeedleBody()};
+  std::vector<BodyModel> models = {
+      test::Diag123Body(), BodyModel("box", MakeBox(1.0, {0.1, 0.2, 0.3}, 2)),
+      test::RodBody(),     test::PointBody(),
+      test::NearRodBody(), test::NeedleBody()};
   const std::vector<std::string> never_frozen = {"diag123", "rod", "point"};
   struct Run {
     std::string integrator;
@@ -383,8 +397,8 @@ TEST(Stress, RandomParticleForcesKeepEveryStateFinite) {
   for (const auto& [name, seed, steps] : runs) {
     std::vector<BodyState> states(models.size());
     for (std::size_t i = 0; i < models.size(); ++i) {
-      states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), test::kTilt, Vector3d(0, 0.1, 0),
-                                 Vector3d(0.3, -1.0, 2.0));
+      states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), test::kTilt,
+                                 Vector3d(0, 0.1, 0), Vector3d(0.3, -1.0, 2.0));
     }
     WorldOptions options;
     options.integrator = name;
@@ -417,13 +431,14 @@ TEST(Stress, RandomParticleForcesKeepEveryStateFinite) {
           << name << ", " << body << ": " << ToString(fault);
       if (name == kDefaultIntegrator ||
           std::find(never_frozen.begin(), never_frozen.end(), body) != never_frozen.end()) {
-        EXPECT_EQ(fault, BodyFault::kNone) << name << " seed " << seed << ", " << body << ": "
-                                           << ToString(fault);
+        EXPECT_EQ(fault, BodyFault::kNone)
+            << name << " seed " << seed << ", " << body << ": " << ToString(fault);
       }
       ExpectLInRange(world.model(b), world.state(b), name + ", " + body);
     }
     std::printf("  %-18s seed %d frozen:%s  max h|ω| of moving bodies %.2g, most substeps %u\n",
-                name.c_str(), seed, frozen.empty() ? " none" : frozen.c_str(), max_h_omega, max_substeps);
+                name.c_str(), seed, frozen.empty() ? " none" : frozen.c_str(), max_h_omega,
+                max_substeps);
   }
 }
 

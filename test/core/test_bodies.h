@@ -17,8 +17,8 @@ namespace rigid_body_sim::core::test {
 inline BodyModel Diag123Body() {
   const double a = 1.0;
   const double b = std::sqrt(0.5);
-  return BodyModel("diag123", {{1.0, {a, 0, 0}}, {1.0, {-a, 0, 0}},
-                               {1.0, {0, b, 0}}, {1.0, {0, -b, 0}}});
+  return BodyModel("diag123",
+                   {{1.0, {a, 0, 0}}, {1.0, {-a, 0, 0}}, {1.0, {0, b, 0}}, {1.0, {0, -b, 0}}});
 }
 
 // Six masses m at ±d_k e_k giving diagonal moments (I1, I2, I3), which must
@@ -50,7 +50,8 @@ inline BodyModel PointBody() { return BodyModel("point", {{2.0, {0.3, -0.1, 0.2}
 // a memcmp of the structs would read their padding).
 inline bool SameBits(const BodyState& a, const BodyState& b) {
   return std::memcmp(a.position.data(), b.position.data(), sizeof(double) * 3) == 0 &&
-         std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(), sizeof(double) * 4) == 0 &&
+         std::memcmp(a.orientation.coeffs().data(), b.orientation.coeffs().data(),
+                     sizeof(double) * 4) == 0 &&
          std::memcmp(a.linear_momentum.data(), b.linear_momentum.data(), sizeof(double) * 3) == 0 &&
          std::memcmp(a.angular_momentum.data(), b.angular_momentum.data(), sizeof(double) * 3) == 0;
 }

@@ -120,7 +120,9 @@ TEST(Validate, EachKeyIsNamedAsItsReaderNamesIt) {
             "~integrator: " + UnknownIntegratorMessage("leapfrog"));
   EXPECT_EQ(MessageOf([] { CheckIntegratorName("leapfrog", KeyNaming::kRuntime); }),
             "integrator: " + UnknownIntegratorMessage("leapfrog"));
-  EXPECT_EQ(MessageOf([] { CheckGravity({0.0, kInf, 0.0}, KeyNaming::kRuntime); }),
+  EXPECT_EQ(MessageOf([] {
+              CheckGravity({0.0, kInf, 0.0}, KeyNaming::kRuntime);
+            }),
             "gravity_y must be finite, got inf");
 }
 
@@ -178,7 +180,8 @@ TEST(Validate, ABodyDefIsNamedByItsEntry) {
             "bodies[4] (name 'rod'): linear_damping must be a finite number >= 0 [1/s], got -1");
   BodyDef fast = rod;
   fast.initial_state.linear_momentum = {4.0 * 3.5e8, 0.0, 0.0};
-  EXPECT_EQ(message(fast, std::nullopt), "bodies[4] (name 'rod'): initial state is faster_than_light");
+  EXPECT_EQ(message(fast, std::nullopt),
+            "bodies[4] (name 'rod'): initial state is faster_than_light");
   BodyDef spinning = BodyDef{test::Diag123Body()};
   spinning.initial_state.angular_momentum = {1e7, 2e7, 3e7};
   EXPECT_EQ(message(spinning, std::nullopt),
@@ -198,8 +201,8 @@ TEST(Validate, ASceneIsCheckedAsTheWorldBuiltFromItChecksIt) {
   EXPECT_EQ(MessageOf([&] { CheckBodyDefs({twins[0], twins[1]}, WorldDef{}); }), "accepted");
 }
 
-// The validator counts a new body's substeps itself (a scene is checked
-// without a World); it must agree with World::SubstepsFor for every scheme,
+// The validator counts a new body's substeps without a World (a scene is
+// checked before one is built); it must agree with World::SubstepsFor for every scheme,
 // cap and spin, up to where the body is refused.
 TEST(Validate, TheSpinCheckIsTheWorldsSubstepCount) {
   const Eigen::Vector3d axis = Eigen::Vector3d(0.3, 1.0, 0.2).normalized();

@@ -38,7 +38,7 @@ TEST(World, IsDeterministicToTheBit) {
   auto run = [&] {
     World world = MakeWorld(options);
     ParticleWrench push;
-    push.body = 0;
+    push.body = world.id(0);
     push.particle = 1;
     push.force = {0.3, -2.0, 1.0};
     push.axes = WrenchAxes::kBody;
@@ -71,7 +71,8 @@ TEST(World, GravityScalesPerBody) {
   for (std::size_t i = 0; i < 3; ++i) {
     const double g = properties[i].gravity_scale * options.gravity.z();
     EXPECT_NEAR(world.state(i).position.z(), 0.5 * g * t * t, 1e-12) << "body " << i;
-    EXPECT_NEAR(world.state(i).linear_momentum.z(), models[i].mass() * g * t, 1e-12) << "body " << i;
+    EXPECT_NEAR(world.state(i).linear_momentum.z(), models[i].mass() * g * t, 1e-12)
+        << "body " << i;
   }
   EXPECT_EQ(world.state(1).position.z(), 0.0);
 }
@@ -100,7 +101,7 @@ TEST(World, AddedBodyMovesFromTheNextStepAndResetsToItsAddedState) {
   floating.gravity_scale = 0.5;
   world.AddBody(BodyModel("late", {{2.0, {0.0, 0.0, 0.0}}}), start, floating);
   ASSERT_EQ(world.size(), 5u);
-  EXPECT_EQ(world.FindBody("late"), std::optional<std::size_t>(4));
+  EXPECT_EQ(world.IndexOf(*world.FindBody("late")), std::optional<std::size_t>(4));
   for (int n = 0; n < 20; ++n) world.Step();
   const double t = 20 * options.dt_s;
   EXPECT_NEAR(world.state(4).position.z(), 3.0 - 0.5 * 0.5 * 9.81 * t * t, 1e-12);
@@ -128,21 +129,58 @@ TEST(World, RefusedBodyLeavesTheWorldAsItWas) {
 TEST(World, RemovedBodyTakesItsWrenchesAndTheOthersKeepTheirs) {
   World world = MakeWorld(WorldOptions{});
   ParticleWrench push;
-  push.body = 2;  // the point body, after the one removed
+  push.body = world.id(2);  // the point body, after the one removed
   push.force = {4.0, 0.0, 0.0};
   world.HoldWrench(push);
-  push.body = 1;
+  push.body = world.id(1);
   world.HoldWrench(push);
   const BodyState point_before = world.state(2);
-  world.RemoveBody(1);
+  world.RemoveBody(world.id(1));
   ASSERT_EQ(world.size(), 3u);
-  EXPECT_EQ(world.FindBody("point"), std::optional<std::size_t>(1));
+  EXPECT_EQ(world.IndexOf(*world.FindBody("point")), std::optional<std::size_t>(1));
   EXPECT_FALSE(world.FindBody("rod"));
-  EXPECT_EQ(world.FindBody("box"), std::optional<std::size_t>(2));
+  EXPECT_EQ(world.IndexOf(*world.FindBody("box")), std::optional<std::size_t>(2));
   world.Step();
   // Δp = F dt on the point body, which moved down to index 1.
   EXPECT_NEAR(world.state(1).linear_momentum.x() - point_before.linear_momentum.x(),
               4.0 * world.options().dt_s, 1e-15);
+}
+
+TEST(World, AStaleIdIsCaughtNeverTakenForTheBodyInItsSlot) {
+  World world = MakeWorld(WorldOptions{});
+  const BodyId rod = *world.FindBody("rod");
+  world.RemoveBody(rod);
+  const BodyId fresh = world.AddBody(test::RodBody(), BodyState{}, BodyProperties{});
+  EXPECT_EQ(fresh.slot, rod.slot);  // the slot is reused under a new generation
+  EXPECT_NE(fresh, rod);
+  EXPECT_FALSE(world.IndexOf(rod).has_value());
+  EXPECT_THROW(world.SetBodyState(rod, BodyState{}), std::out_of_range);
+  EXPECT_THROW(world.RemoveBody(rod), std::out_of_range);
+  EXPECT_THROW(world.state(rod), std::out_of_range);
+  EXPECT_EQ(world.size(), 4u);
+  EXPECT_EQ(world.IndexOf(fresh), std::optional<std::size_t>(3));
+}
+
+TEST(World, ListenersHearOfEveryAddAndRemoveAfterTheFact) {
+  struct Recorder : BodyListener {
+    std::vector<std::string> heard;
+    void OnBodyAdded(const World& world, BodyId id) override {
+      heard.push_back("+" + world.model(id).name());
+    }
+    void OnBodyRemoved(const World& world, BodyId id) override {
+      heard.push_back(world.IndexOf(id) ? "-still there" : "-gone");
+    }
+  };
+  World world = MakeWorld(WorldOptions{});
+  Recorder recorder;
+  world.AddListener(&recorder);
+  const BodyId late = world.AddBody(BodyModel("late", {{1.0, {0, 0, 0}}}), {}, {});
+  EXPECT_THROW(world.AddBody(BodyModel("late", {{1.0, {0, 0, 0}}}), {}, {}),
+               std::invalid_argument);  // refused: nobody hears of it
+  world.RemoveBody(late);
+  world.RemoveListener(&recorder);
+  world.RemoveBody(*world.FindBody("rod"));
+  EXPECT_EQ(recorder.heard, (std::vector<std::string>{"+late", "-gone"}));
 }
 
 TEST(World, DampedBodiesDecayExponentiallyThroughTheWorld) {
@@ -175,7 +213,7 @@ TEST(World, GravityAndWrenchesFollowTheirStartTimes) {
   options.wrench_timeout_s = 0.05;
   World world = MakeWorld(options);
   ParticleWrench push;
-  push.body = 2;  // the single particle, p0 = (2, 0, 0)
+  push.body = world.id(2);  // the single particle, p0 = (2, 0, 0)
   push.force = {1.0, 0.0, 0.0};
   push.start_s = 0.1;  // active on steps with t_n in [0.1, 0.15): 5 steps
   world.HoldWrench(push);
@@ -190,8 +228,12 @@ TEST(World, RecordsTheStartVelocityAndTotalWrenchOfARequestedStepOnly) {
   // Six unit masses at ±(0.4, 0.3, 0.2) on the axes: M = 6 kg, COM at the
   // origin, so particle 0's offset is r̄ = (0.4, 0, 0). Turned 90° about z:
   // A r̄ = (0, 0.4, 0).
-  const BodyModel body("six", {{1.0, {0.4, 0, 0}}, {1.0, {-0.4, 0, 0}}, {1.0, {0, 0.3, 0}},
-                               {1.0, {0, -0.3, 0}}, {1.0, {0, 0, 0.2}}, {1.0, {0, 0, -0.2}}});
+  const BodyModel body("six", {{1.0, {0.4, 0, 0}},
+                               {1.0, {-0.4, 0, 0}},
+                               {1.0, {0, 0.3, 0}},
+                               {1.0, {0, -0.3, 0}},
+                               {1.0, {0, 0, 0.2}},
+                               {1.0, {0, 0, -0.2}}});
   BodyState moving;
   moving.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.5 * M_PI, Eigen::Vector3d::UnitZ()));
   moving.linear_momentum = {6.0, -3.0, 1.5};  // v = (1, -0.5, 0.25)
@@ -206,7 +248,7 @@ TEST(World, RecordsTheStartVelocityAndTotalWrenchOfARequestedStepOnly) {
   World world({body, BodyModel("resting", {{1.0, {0, 0, 0}}})}, {moving, BodyState{}}, options,
               properties);
   ParticleWrench push;
-  push.body = 0;
+  push.body = world.id(0);
   push.particle = 0;
   push.force = {0.0, 2.0, -1.0};  // world axes
   world.HoldWrench(push);
@@ -235,7 +277,7 @@ TEST(World, RecordsTheStartVelocityAndTotalWrenchOfARequestedStepOnly) {
   world.RecordNextStep();
   world.Step();
   ASSERT_NE(world.last_step_record(0), nullptr);
-  world.SetBodyState(0, moving);
+  world.SetBodyState(world.id(0), moving);
   EXPECT_EQ(world.last_step_record(0), nullptr) << "SetBodyState starts the body afresh";
   EXPECT_NE(world.last_step_record(1), nullptr) << "the other body keeps its record";
   world.Reset();
@@ -248,6 +290,7 @@ TEST(World, RecordsTheStartVelocityAndTotalWrenchOfARequestedStepOnly) {
 TEST(World, ResetRestoresBodiesAndClearsWrenchesButTimeGoesOn) {
   World world = MakeWorld(WorldOptions{});
   ParticleWrench push;
+  push.body = world.id(0);
   push.force = {1, 1, 1};
   world.HoldWrench(push);
   for (int n = 0; n < 100; ++n) world.Step();
@@ -262,7 +305,7 @@ TEST(World, ResetRestoresBodiesAndClearsWrenchesButTimeGoesOn) {
 TEST(World, RodKeepsLInTheRangeOfIAndCountsDroppedCouples) {
   World world = MakeWorld(WorldOptions{});
   ParticleWrench twist;
-  twist.body = 1;
+  twist.body = world.id(1);
   twist.couple = {0.0, 0.0, 2.0};  // along the rod's axis at the start
   world.HoldWrench(twist);
   for (int n = 0; n < 500; ++n) world.Step();
@@ -294,7 +337,8 @@ TEST(World, BadOptionsAreNamed) {
     World(one, too_fast, WorldOptions{});
     FAIL();
   } catch (const std::invalid_argument& e) {
-    EXPECT_EQ(std::string(e.what()), "bodies[0] (name 'point'): initial state is faster_than_light");
+    EXPECT_EQ(std::string(e.what()),
+              "bodies[0] (name 'point'): initial state is faster_than_light");
   }
   std::vector<BodyModel> twins = {test::RodBody(), test::RodBody()};
   try {
@@ -304,7 +348,6 @@ TEST(World, BadOptionsAreNamed) {
     EXPECT_EQ(std::string(e.what()), "bodies[1] (name 'rod'): name duplicates bodies[0]");
   }
 }
-
 
 // The setters between steps: each in force from the next step on, time and
 // states going on.
@@ -345,10 +388,11 @@ TEST(World, AWrenchTimeoutChangeAppliesToTheWrenchesAlreadyHeld) {
   options.dt_s = 0.01;
   World world = MakePointWorld(options);  // held until replaced
   ParticleWrench push;
+  push.body = world.id(0);
   push.force = {1.0, 0.0, 0.0};
   world.HoldWrench(push);
   for (int n = 0; n < 10; ++n) world.Step();  // t = 0.1
-  world.SetWrenchTimeout(0.05);  // the push, held since 0, has expired
+  world.SetWrenchTimeout(0.05);               // the push, held since 0, has expired
   world.Step();
   EXPECT_EQ(world.wrenches().size(), 0u);
   EXPECT_NEAR(world.state(0).linear_momentum.x(), 10 * 0.01 * 1.0, 1e-13);
@@ -388,7 +432,8 @@ TEST(World, AnIntegratorSwapKeepsStatesAndTimeAndStepsWithTheNewScheme) {
   fresh.Step();
   for (std::size_t i = 0; i < before.size(); ++i) {
     EXPECT_EQ(world.state(i).position, fresh.state(i).position) << "body " << i;
-    EXPECT_EQ(world.state(i).orientation.coeffs(), fresh.state(i).orientation.coeffs()) << "body " << i;
+    EXPECT_EQ(world.state(i).orientation.coeffs(), fresh.state(i).orientation.coeffs())
+        << "body " << i;
     EXPECT_EQ(world.state(i).linear_momentum, fresh.state(i).linear_momentum) << "body " << i;
     EXPECT_EQ(world.state(i).angular_momentum, fresh.state(i).angular_momentum) << "body " << i;
   }
@@ -406,7 +451,7 @@ TEST(World, AHugeForceFreezesOnlyThatBodyAtItsLastGoodState) {
   World world = MakeWorld(WorldOptions{});
   for (int n = 0; n < 10; ++n) world.Step();
   ParticleWrench absurd;
-  absurd.body = 3;  // the box
+  absurd.body = world.id(3);  // the box
   absurd.force = {1e300, 0.0, 0.0};
   world.HoldWrench(absurd);  // finite: allowed in
   const BodyState last_good = world.state(3);
@@ -422,7 +467,7 @@ TEST(World, AHugeForceFreezesOnlyThatBodyAtItsLastGoodState) {
   EXPECT_NE(world.state(1).orientation.coeffs(), rod_before.orientation.coeffs());  // others go on
   // 1e12 N for 1 ms on the 2 kg particle: 5e8 m/s, finite but past c.
   ParticleWrench fast;
-  fast.body = 2;
+  fast.body = world.id(2);
   fast.force = {1e12, 0.0, 0.0};
   world.HoldWrench(fast);
   world.Step();
@@ -439,20 +484,21 @@ TEST(World, AFastSpinIsSubsteppedAndOnlyBeyondMaxSubstepsFrozen) {
   options.max_substeps = 10;
   options.integrator = "rk4";  // its error rate is |ω|
   World world = MakeWorld(options);
-  BodyState spinning = world.state(0);  // Ī = diag(1, 2, 3)
+  BodyState spinning = world.state(0);                  // Ī = diag(1, 2, 3)
   spinning.angular_momentum = {0.0, 0.0, 3.0 * 200.0};  // ω = 200 rad/s: 0.2 rad per step
-  world.SetBodyState(0, spinning);
+  world.SetBodyState(world.id(0), spinning);
   EXPECT_EQ(world.SubstepsFor(0, spinning), 5u);  // 0.2 rad / kMaxSubstepAngle
   world.Step();
   EXPECT_EQ(world.fault(0), BodyFault::kNone);
   EXPECT_EQ(world.last_step_substeps_max(), 5u);
   ParticleWrench spin_up;
+  spin_up.body = world.id(0);
   spin_up.couple = {0.0, 0.0, 3.0 * 1000.0 / 1e-3};  // +1000 rad/s in one step: 30 substeps
   world.HoldWrench(spin_up);
   world.Step();
   EXPECT_EQ(world.fault(0), BodyFault::kSpinAliased);
   world.ClearWrenches();
-  world.SetBodyState(0, spinning);
+  world.SetBodyState(world.id(0), spinning);
   EXPECT_EQ(world.fault(0), BodyFault::kNone);
   world.Step();
   EXPECT_EQ(world.fault(0), BodyFault::kNone);
@@ -482,8 +528,10 @@ TEST(World, NSubstepsAreNStepsOfDtOverN) {
     world.Step();
     for (std::uint32_t k = 0; k < n; ++k) reference.Step();
     EXPECT_EQ(world.last_step_substeps_max(), n);
-    EXPECT_LT(test::AngleBetween(world.state(0).orientation, reference.state(0).orientation), 1e-13);
-    EXPECT_LT((world.state(0).angular_momentum - reference.state(0).angular_momentum).norm(), 1e-12);
+    EXPECT_LT(test::AngleBetween(world.state(0).orientation, reference.state(0).orientation),
+              1e-13);
+    EXPECT_LT((world.state(0).angular_momentum - reference.state(0).angular_momentum).norm(),
+              1e-12);
   }
 }
 

@@ -68,11 +68,11 @@ World MakeMixedWorld(std::size_t threads) {
   World world(std::move(models), std::move(states), options, std::move(properties));
   BodyState broken = world.state(57);
   broken.angular_momentum.x() = std::nan("");  // as a state set from outside
-  world.SetBodyState(57, broken);
+  world.SetBodyState(world.id(57), broken);
   for (std::size_t i = 0; i < world.size(); ++i) {
     if (i % 3 != 0) continue;
     ParticleWrench push;
-    push.body = i;
+    push.body = world.id(i);
     push.particle = i % world.model(i).particle_count();
     push.axes = i % 2 ? WrenchAxes::kBody : WrenchAxes::kWorld;
     push.force = Eigen::Vector3d(0.5, -1.0, 0.25) * (1.0 + 0.01 * i);

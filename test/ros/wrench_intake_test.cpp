@@ -4,19 +4,23 @@
 
 #include <gtest/gtest.h>
 
+#include "rigid_body_sim/core/shapes.h"
+
 #include "rigid_body_sim/ros/wrench_intake.h"
 
 namespace rigid_body_sim {
 namespace {
 
-WrenchFrames Frames() {
-  WrenchFrames frames;
-  frames.world_frame = "world";
-  frames.tf_prefix = "sim/";
-  frames.body_index = {{"box", 0}, {"rod", 1}};
-  frames.particle_counts = {8, 3};
-  return frames;
+// A box of 8 particles and a rod of 3.
+const core::World& BoxAndRod() {
+  static const core::World world(
+      {core::BodyModel("box", core::MakeBox(1.0, {0.2, 0.3, 0.4}, 2)),
+       core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0}}, {1.0, {0, 0, 0.5}}})},
+      std::vector<core::BodyState>(2), core::WorldOptions{});
+  return world;
 }
+
+WrenchFrames Frames() { return MakeWrenchFrames(BoxAndRod(), "world", "sim/"); }
 
 ParticleWrench Message(const std::string& body, std::uint32_t particle, const std::string& frame) {
   ParticleWrench msg;
@@ -45,14 +49,15 @@ TEST(WrenchIntake, FrameIdChoosesTheAxes) {
             WrenchMsgRejection::kParticleOutOfRange);
   ParticleWrench nan = Message("rod", 2, "");
   nan.wrench.torque.z = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_EQ(CheckParticleWrench(nan, Frames(), start, 0.5).rejection, WrenchMsgRejection::kNonFinite);
+  EXPECT_EQ(CheckParticleWrench(nan, Frames(), start, 0.5).rejection,
+            WrenchMsgRejection::kNonFinite);
 }
 
 TEST(WrenchIntake, StampsBecomeSimulationTimesExactlyAndNeverThrow) {
   const ros::Time start(1700000000, 250000000);
   ParticleWrench msg = Message("box", 1, "");
   EXPECT_EQ(CheckParticleWrench(msg, Frames(), start, 0.125).wrench.start_s, 0.125);  // zero stamp
-  msg.header.stamp = start + ros::Duration(0, 3000000);                           // t0 + 3 ms
+  msg.header.stamp = start + ros::Duration(0, 3000000);                               // t0 + 3 ms
   EXPECT_EQ(CheckParticleWrench(msg, Frames(), start, 0.125).wrench.start_s, 0.003);
   msg.header.stamp = ros::Time(1, 0);  // long before the start: active at once
   EXPECT_LT(CheckParticleWrench(msg, Frames(), start, 0.125).wrench.start_s, -1.6e9);
@@ -73,7 +78,8 @@ TEST(WrenchIntake, CountsEachRejectionOnceByReasonAndCapsArrays) {
   array.wrenches = {Message("rod", 0, ""), Message("rod", 9, ""), Message("box", 1, "nowhere"),
                     Message("box", 2, "")};
   std::vector<std::size_t> held;
-  intake.TakeArray(array.wrenches, start, 0.0, [&](const core::ParticleWrench& w) { held.push_back(w.particle); });
+  intake.TakeArray(array.wrenches, start, 0.0,
+                   [&](const core::ParticleWrench& w) { held.push_back(w.particle); });
   EXPECT_EQ(held, (std::vector<std::size_t>{0, 2}));  // valid entries still apply, in order
   EXPECT_EQ(intake.rejected_messages(), 3u);
   EXPECT_EQ(intake.rejected(WrenchMsgRejection::kUnknownBody), 1u);
@@ -98,7 +104,8 @@ TEST(WrenchIntake, ListsEachRejectedEntryByIndexForAService) {
   entries[2].wrench.force.x = std::nan("");
   std::vector<std::string> rejections;
   std::size_t held = 0;
-  intake.TakeArray(entries, start, 0.0, [&](const core::ParticleWrench&) { ++held; }, &rejections);
+  intake.TakeArray(
+      entries, start, 0.0, [&](const core::ParticleWrench&) { ++held; }, &rejections);
   EXPECT_EQ(held, 1u);
   ASSERT_EQ(rejections.size(), 3u);
   EXPECT_EQ(rejections[0].rfind("wrenches[1]: unknown_body: ", 0), 0u) << rejections[0];

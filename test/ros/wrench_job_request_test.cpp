@@ -3,21 +3,26 @@
 
 #include <gtest/gtest.h>
 
+#include "rigid_body_sim/core/shapes.h"
+
 #include "rigid_body_sim/ros/wrench_job_request.h"
 
 namespace rigid_body_sim {
 namespace {
 
-WrenchFrames Frames() {
-  WrenchFrames frames;
-  frames.world_frame = "world";
-  frames.tf_prefix = "sim/";
-  frames.body_index = {{"box", 0}, {"rod", 1}};
-  frames.particle_counts = {8, 3};
-  return frames;
+// A box of 8 particles and a rod of 3.
+const core::World& BoxAndRod() {
+  static const core::World world(
+      {core::BodyModel("box", core::MakeBox(1.0, {0.2, 0.3, 0.4}, 2)),
+       core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0}}, {1.0, {0, 0, 0.5}}})},
+      std::vector<core::BodyState>(2), core::WorldOptions{});
+  return world;
 }
 
-ApplyBodyWrench::Request Request(const std::string& body, const std::string& frame, double duration_s) {
+WrenchFrames Frames() { return MakeWrenchFrames(BoxAndRod(), "world", "sim/"); }
+
+ApplyBodyWrench::Request Request(const std::string& body, const std::string& frame,
+                                 double duration_s) {
   ApplyBodyWrench::Request request;
   request.body = body;
   request.reference_frame = frame;
@@ -34,14 +39,15 @@ TEST(WrenchJobRequest, BecomesAJobFromTheNextStepOverItsDuration) {
   std::string message;
   const auto job = JobFromRequest(Request("rod", "sim/rod", 0.25), Frames(), kStart, 2.0, &message);
   ASSERT_TRUE(job) << message;
-  EXPECT_EQ(job->body, 1u);
+  EXPECT_EQ(job->body, BoxAndRod().id(1));
   EXPECT_EQ(job->axes, core::WrenchAxes::kBody);
   EXPECT_EQ(job->point_m, Eigen::Vector3d(0.25, 0.0, 0.0));
   EXPECT_EQ(job->force, Eigen::Vector3d(0.0, 3.0, 0.0));
   EXPECT_EQ(job->couple, Eigen::Vector3d(0.0, 0.0, -1.0));
   EXPECT_EQ(job->start_s, 2.0);
   EXPECT_EQ(job->end_s, 2.25);
-  const auto forever = JobFromRequest(Request("box", "/world", -1.0), Frames(), kStart, 2.0, &message);
+  const auto forever =
+      JobFromRequest(Request("box", "/world", -1.0), Frames(), kStart, 2.0, &message);
   ASSERT_TRUE(forever);
   EXPECT_EQ(forever->axes, core::WrenchAxes::kWorld);
   EXPECT_EQ(forever->end_s, std::numeric_limits<double>::infinity());

@@ -21,24 +21,26 @@ class ConservationMonitor {
   // torque-free again (after a reset or when the held wrenches were cleared).
   void RebaseAll(const World& world);
   // Takes one body's current state as its reference (after it was set).
-  void Rebase(const World& world, std::size_t body);
+  void Rebase(const World& world, BodyId body);
   // A wrench was held for the body: it no longer conserves anything.
-  void MarkLoaded(std::size_t body) { loaded_[body] = true; }
-  // The world appended a body: referenced at its current state, torque-free
+  void MarkLoaded(BodyId body) { references_.at(body).loaded = true; }
+  // The world added `body`: referenced at its current state, torque-free
   // unless damped.
-  void AddBody(const World& world);
-  // The world removed `body`: the sweep starts over, as its indices moved.
-  void RemoveBody(std::size_t body);
+  void AddBody(const World& world, BodyId body);
+  // The world removed `body`: the sweep starts over, as the indices moved.
+  void RemoveBody(BodyId body);
 
   // Relative drifts (x − x₀) / x₀, absolute when x₀ is zero.
   struct Drift {
     double angular_momentum_norm = 0.0;
     double rotational_energy = 0.0;
   };
-  // Nothing for a body that had a wrench since its reference.
-  std::optional<Drift> Measure(const World& world, std::size_t body) const;
+  // Nothing for a body that had a wrench since its reference; `index` is its
+  // place in the world.
+  std::optional<Drift> Measure(const World& world, std::size_t index) const;
 
-  // The largest |drift| of each kind over the torque-free bodies, and whose.
+  // The largest |drift| of each kind over the torque-free bodies, and whose
+  // (their indices in the world).
   struct Largest {
     bool measured = false;  // false: no torque-free body in the sweep
     double angular_momentum_norm = 0.0;
@@ -57,10 +59,14 @@ class ConservationMonitor {
     double angular_momentum_norm = 0.0;
     double rotational_energy = 0.0;
   };
-  static Invariants Of(const World& world, std::size_t body);
+  static Invariants Of(const World& world, std::size_t index);
+  struct Reference {
+    Invariants invariants;
+    bool loaded = false;
+  };
+  Reference ReferenceOf(const World& world, std::size_t index) const;
 
-  std::vector<Invariants> references_;
-  std::vector<bool> loaded_;
+  BodyMap<Reference> references_;
   std::size_t sweep_cursor_ = 0;
   Largest sweep_;
   Largest last_sweep_;

@@ -32,8 +32,8 @@ class HeldLoads final : public Load {
   // std::invalid_argument for a rate that is negative or not finite.
   void SetDamping(double linear_per_s, double angular_per_s);
 
-  // Norm of the couple dropped by the projector at orientation `rotation` [N m].
-  double DroppedTorque(const Eigen::Matrix3d& rotation) const;
+  // Norm of the couple dropped by the projector at orientation R_WB [N m].
+  double DroppedTorque(const Eigen::Matrix3d& R_WB) const;
 
   // An upper bound on |τ| at any orientation [N m].
   double TorqueBound() const { return torque_bound_ >= 0.0 ? torque_bound_ : NewTorqueBound(); }
@@ -41,9 +41,9 @@ class HeldLoads final : public Load {
   // |dF/dt| and |dτ/dt| over the bounds of |F| and |τ|, the larger. Zero for
   // loads that do not depend on the orientation (world forces at the COM,
   // world couples) and for turns that leave them unchanged.
-  double TurnRate(const Eigen::Matrix3d& rotation, const Eigen::Vector3d& omega) const;
+  double TurnRate(const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& omega) const;
 
-  Wrench At(double time_in_step_s, const Eigen::Matrix3d& rotation) const override;
+  Wrench At(double time_in_step_s, const Eigen::Matrix3d& R_WB) const override;
   bool has_torque() const override { return has_torque_; }
   bool costly_to_evaluate() const override { return false; }
   Damping damping() const override { return damping_; }

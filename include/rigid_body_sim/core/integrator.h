@@ -15,6 +15,19 @@ namespace rigid_body_sim::core {
 
 class Integrator;
 
+// Bodies handed to a scheme together: their indices and the columns (of a
+// BodyStore) that their steps read and write, indexed by those indices.
+struct BodyBatch {
+  const BodyModel* models = nullptr;
+  const HeldLoads* loads = nullptr;  // Integrator::StepLoaded only
+  BodyState* states = nullptr;
+  const std::size_t* indices = nullptr;
+  std::size_t size = 0;
+
+  const std::size_t* begin() const { return indices; }
+  const std::size_t* end() const { return indices + size; }
+};
+
 // One row of the integrator table.
 struct IntegratorInfo {
   const char* name;
@@ -33,20 +46,15 @@ class Integrator {
   // torque), which lets the scheme skip its force pass.
   virtual void Step(const BodyModel& model, const Load* load, double dt_s,
                     BodyState* state) const = 0;
-  // Advances the free bodies `bodies` (indices into models and states; each
-  // full rank, with neither force nor torque) by dt_s, as Step with a null
-  // load would. A scheme may step several at a time in SIMD lanes; this
-  // default steps them one by one. Checking the new states is the caller's.
-  virtual void StepFree(const std::vector<BodyModel>& models,
-                        const std::vector<std::size_t>& bodies, double dt_s,
-                        std::vector<BodyState>* states) const;
-  // Advances the full-rank bodies `bodies` under their held loads
-  // (loads[body]) by dt_s, as Step would, several at a time where a scheme
-  // can; this default steps them one by one.
-  virtual void StepLoaded(const std::vector<BodyModel>& models,
-                          const std::vector<std::size_t>& bodies,
-                          const std::vector<HeldLoads>& loads, double dt_s,
-                          std::vector<BodyState>* states) const;
+  // Advances the free bodies of `batch` (each full rank, with neither force
+  // nor torque) by dt_s, as Step with a null load would. A scheme may step
+  // several at a time in SIMD lanes; this default steps them one by one.
+  // Checking the new states is the caller's.
+  virtual void StepFree(const BodyBatch& batch, double dt_s) const;
+  // Advances the full-rank bodies of `batch` under their held loads by dt_s,
+  // as Step would, several at a time where a scheme can; this default steps
+  // them one by one.
+  virtual void StepLoaded(const BodyBatch& batch, double dt_s) const;
 
   // The rate [rad/s] at which this scheme's free rotation leaves its exact
   // flows over a step of dt_s from `state`: the local error grows with dt

@@ -15,10 +15,10 @@ namespace rigid_body_sim::core {
 // v = p / M, world [m/s].
 Eigen::Vector3d LinearVelocity(const BodyModel& model, const BodyState& state);
 
-// ω = A Ī⁺ Aᵀ L, world [rad/s], for the rotation A (body → world) and L.
-inline Eigen::Vector3d AngularVelocity(const BodyModel& model, const Eigen::Matrix3d& rotation,
+// ω = R_WB Ī⁺ R_WBᵀ L, world [rad/s], for the orientation R_WB and L.
+inline Eigen::Vector3d AngularVelocity(const BodyModel& model, const Eigen::Matrix3d& R_WB,
                                        const Eigen::Vector3d& angular_momentum) {
-  return rotation * (model.inverse_inertia() * (rotation.transpose() * angular_momentum));
+  return R_WB * (model.inverse_inertia() * (R_WB.transpose() * angular_momentum));
 }
 // The same for a body's state.
 Eigen::Vector3d AngularVelocity(const BodyModel& model, const BodyState& state);

@@ -23,9 +23,9 @@ class Load {
  public:
   virtual ~Load() = default;
   // The wrench at time `time_in_step_s` after the step's start when the body's
-  // orientation (body → world) is `rotation`. Must not depend on anything else,
+  // orientation (body → world) is R_WB. Must not depend on anything else,
   // so that multi-stage integrators can evaluate it at their stage poses.
-  virtual Wrench At(double time_in_step_s, const Eigen::Matrix3d& rotation) const = 0;
+  virtual Wrench At(double time_in_step_s, const Eigen::Matrix3d& R_WB) const = 0;
   // False when the torque is zero for every orientation (gravity only), which
   // lets an integrator skip the angular kick.
   virtual bool has_torque() const = 0;

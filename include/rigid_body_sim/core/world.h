@@ -6,17 +6,19 @@
 #include <memory>
 #include <optional>
 #include <string>
-#include <unordered_map>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "rigid_body_sim/core/body_fault.h"
+#include "rigid_body_sim/core/body_id.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_properties.h"
 #include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/body_store.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/step_policy.h"
 #include "rigid_body_sim/core/step_record.h"
 #include "rigid_body_sim/core/thread_team.h"
 #include "rigid_body_sim/core/world_def.h"  // WorldDef, also spelt WorldOptions
@@ -24,10 +26,18 @@
 
 namespace rigid_body_sim::core {
 
-// The angle [rad] a substep may turn through the parts of the motion that the
-// scheme or the kicks do not follow exactly (Integrator::RotationErrorRate,
-// HeldLoads::TurnRate).
-constexpr double kMaxSubstepAngle = 0.04;
+class World;
+
+// Told of every body added to or removed from a World, after the fact: the
+// one notification every per-body table outside the World follows.
+class BodyListener {
+ public:
+  virtual ~BodyListener() = default;
+  // `id` now lives in `world`, at the last index.
+  virtual void OnBodyAdded(const World& world, BodyId id) = 0;
+  // `id` is gone from `world`; the bodies after it moved down by one.
+  virtual void OnBodyRemoved(const World& world, BodyId id) = 0;
+};
 
 class World {
  public:
@@ -39,13 +49,22 @@ class World {
   World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
         const WorldOptions& options, std::vector<BodyProperties> properties = {});
 
-  std::size_t size() const { return models_.size(); }
-  const BodyModel& model(std::size_t body) const { return models_[body]; }
-  const BodyState& state(std::size_t body) const { return states_[body]; }
-  const BodyProperties& properties(std::size_t body) const { return properties_[body]; }
-  const std::vector<BodyModel>& models() const { return models_; }
-  const std::vector<BodyState>& states() const { return states_; }
-  std::optional<std::size_t> FindBody(const std::string& name) const;
+  // Bodies are read by index (scene order; an index moves down when a body
+  // before it is removed) or by BodyId (stable; a stale id throws
+  // std::out_of_range). Changes name the body by id.
+  std::size_t size() const { return bodies_.size(); }
+  BodyId id(std::size_t index) const { return bodies_.id(index); }
+  std::optional<std::size_t> IndexOf(BodyId id) const { return bodies_.IndexOf(id); }
+  std::optional<BodyId> FindBody(const std::string& name) const { return bodies_.Find(name); }
+  const BodyModel& model(std::size_t index) const { return bodies_.hot().models[index]; }
+  const BodyState& state(std::size_t index) const { return bodies_.hot().states[index]; }
+  const BodyProperties& properties(std::size_t index) const {
+    return bodies_.cold().properties[index];
+  }
+  const BodyModel& model(BodyId id) const { return model(bodies_.CheckedIndex(id)); }
+  const BodyState& state(BodyId id) const { return state(bodies_.CheckedIndex(id)); }
+  const std::vector<BodyModel>& models() const { return bodies_.hot().models; }
+  const std::vector<BodyState>& states() const { return bodies_.hot().states; }
   const Integrator& integrator() const { return *integrator_; }
   const WorldOptions& options() const { return options_; }
 
@@ -76,12 +95,18 @@ class World {
   // Appends a body that moves from `initial_state` at the next step; its
   // initial state is also what Reset brings it back to. Throws
   // std::invalid_argument, naming the entry as "bodies[size()] (name 'n')", on
-  // the constructor's checks; the world is unchanged then.
-  void AddBody(BodyModel model, const BodyState& initial_state, const BodyProperties& properties);
-  // Removes `body` and its wrenches; the bodies after it move down by one.
-  void RemoveBody(std::size_t body);
+  // the constructor's checks; the world is unchanged then. Tells every
+  // listener after the body is in.
+  BodyId AddBody(BodyModel model, const BodyState& initial_state, const BodyProperties& properties);
+  // Removes the body and its wrenches; the bodies after it move down by one.
+  // Tells every listener after it is gone.
+  void RemoveBody(BodyId id);
   // Also clears the body's fault.
-  void SetBodyState(std::size_t body, const BodyState& state);
+  void SetBodyState(BodyId id, const BodyState& state);
+  // `listener` hears of every body added or removed from now on; it must
+  // outlive the World or be removed first.
+  void AddListener(BodyListener* listener) { listeners_.push_back(listener); }
+  void RemoveListener(BodyListener* listener);
 
   // Settings changed between steps: each is in force from the next Step on;
   // time, states and held wrenches go on. Throw std::invalid_argument on a
@@ -91,8 +116,8 @@ class World {
   void SetWrenchTimeout(double timeout_s);
   void SetIntegrator(const std::string& name);  // UnknownIntegratorMessage
 
-  // Why `body` is frozen (kNone while it moves).
-  BodyFault fault(std::size_t body) const { return faults_[body]; }
+  // Why the body is frozen (kNone while it moves).
+  BodyFault fault(std::size_t index) const { return bodies_.hot().faults[index]; }
   std::size_t frozen_count() const { return frozen_count_; }
 
   // Holds a checked particle wrench (WrenchTable::Hold).
@@ -102,8 +127,8 @@ class World {
   // Adds a checked job (WrenchTable::AddJob), counting live jobs at the next step.
   JobRefusal AddWrenchJob(const WrenchJob& job) { return wrenches_.AddJob(job, time()); }
   void ClearWrenches() { wrenches_.Clear(); }
-  // Drops `body`'s particle wrenches, body wrench and jobs.
-  void ClearBodyWrenches(std::size_t body) { wrenches_.ClearBody(body); }
+  // Drops the body's particle wrenches, body wrench and jobs.
+  void ClearBodyWrenches(BodyId id) { wrenches_.ClearBody(id); }
   const WrenchTable& wrenches() const { return wrenches_; }
 
   // Steps in which a body's pure couple had a component along a null
@@ -114,12 +139,14 @@ class World {
   // the next Step keeps every body's StepRecord, frozen and resting bodies
   // included.
   void RecordNextStep() { record_next_step_ = true; }
-  // `body`'s record of the last Step, or nullptr when that Step was not
-  // recorded or the body has not stepped since Reset, SetBodyState or being
-  // added.
-  const StepRecord* last_step_record(std::size_t body) const {
-    return last_step_recorded_ && body < step_record_valid_.size() && step_record_valid_[body]
-               ? &step_records_[body]
+  // The record of body `index` for the last Step, or nullptr when that Step
+  // was not recorded or the body has not stepped since Reset, SetBodyState or
+  // being added.
+  const StepRecord* last_step_record(std::size_t index) const {
+    const BodyColdColumns& cold = bodies_.cold();
+    return last_step_recorded_ && index < cold.step_record_valid.size() &&
+                   cold.step_record_valid[index]
+               ? &cold.step_records[index]
                : nullptr;
   }
 
@@ -128,8 +155,6 @@ class World {
   void RecordStepStart();
   bool record_next_step_ = false;
   bool last_step_recorded_ = false;
-  std::vector<StepRecord> step_records_;
-  std::vector<char> step_record_valid_;  // per body: stepped since Reset / SetBodyState
 
   struct Pose {
     Eigen::Vector3d position;
@@ -153,42 +178,34 @@ class World {
     std::uint64_t dropped_couples = 0;
     std::uint32_t substeps_max = 1;
   };
-  // Steps the bodies [begin, end) that move, adding to `share`'s counts.
+  // Steps the bodies of indices [begin, end) that move, adding to `share`'s counts.
   void StepBlock(std::size_t begin, std::size_t end, Share* share);
   // After a body's step: L projected into the range of a rank-deficient I,
   // then the CheckState bounds (a body that breaks one gets `before` back and
   // is frozen).
-  void FinishStep(std::size_t body, const BodyState& before, Share* share);
-  void Freeze(std::size_t body, BodyFault fault, Share* share);
-  // The constructor's checks of body i: a name no other body has, its
-  // properties and its initial state; throws std::invalid_argument.
-  void CheckBody(std::size_t i) const;
-  // Body i's per-body constants: torque projector, one-step bound.
-  void PrepareBody(std::size_t i);
-  // Undoes the appends of AddBody.
-  void RemoveLast();
+  void FinishStep(std::size_t index, const BodyState& before, Share* share);
+  void Freeze(std::size_t index, BodyFault fault, Share* share);
+  // The checks of a body that would be bodies[index]: a name no other body
+  // has, its properties and its initial state; throws std::invalid_argument.
+  void CheckBody(std::size_t index, const BodyModel& model, const BodyState& initial_state,
+                 const BodyProperties& properties) const;
+  // Body `index`'s per-body constants: torque projector, damping, one-step bound.
+  void PrepareBody(std::size_t index);
+  std::uint32_t SubstepsFor(const BodyModel& model, const HeldLoads* load,
+                            const BodyState& state) const;
   // Steps the bodies in share->free_batch through StepFree, checks each, and
   // empties it.
   void StepFreeBatch(Share* share);
   // The same for share->loaded_batch through StepLoaded.
   void StepLoadedBatch(Share* share);
+  // The bodies `indices` with the store's columns, for the integrator.
+  BodyBatch Batch(const std::vector<std::size_t>& indices);
 
-  std::vector<BodyModel> models_;
-  std::vector<BodyState> initial_states_;
-  std::vector<BodyState> states_;
-  std::vector<BodyProperties> properties_;
-  std::unordered_map<std::string, std::size_t> body_index_;  // name → index
+  BodyStore bodies_;
+  std::vector<BodyListener*> listeners_;
   WorldOptions options_;
   std::unique_ptr<Integrator> integrator_;
   WrenchTable wrenches_;
-  // This step's loads (held wrenches and gravity) of the bodies with loaded_
-  // set, summed again only when WrenchTable::Reduce finds them changed.
-  std::vector<HeldLoads> loads_;
-  std::vector<char> loaded_;
-  std::vector<BodyFault> faults_;
-  // Per body, the |L|² below which a free body needs no substep (the cheap
-  // bound of SubstepsFor, squared), so the common case costs one compare.
-  std::vector<double> one_step_momentum_sq_;
   std::vector<Share> shares_;  // one per thread, indexed as ThreadTeam members
   // Behind a pointer, so that a World can move.
   std::unique_ptr<ThreadTeam> team_;

@@ -13,7 +13,8 @@
 
 #include <Eigen/Core>
 
-#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_id.h"
+#include "rigid_body_sim/core/body_store.h"
 #include "rigid_body_sim/core/held_loads.h"
 
 namespace rigid_body_sim::core {
@@ -21,7 +22,7 @@ namespace rigid_body_sim::core {
 enum class WrenchAxes { kWorld, kBody };
 
 struct ParticleWrench {
-  std::size_t body = 0;
+  BodyId body;
   std::size_t particle = 0;
   WrenchAxes axes = WrenchAxes::kWorld;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   // [N], at the particle
@@ -31,7 +32,7 @@ struct ParticleWrench {
 
 // A force at the COM and a couple, on the whole body.
 struct BodyWrench {
-  std::size_t body = 0;
+  BodyId body;
   WrenchAxes axes = WrenchAxes::kWorld;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();   // [N], at the COM
   Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // [N m]
@@ -42,7 +43,7 @@ struct BodyWrench {
 // a couple, acting while start_s <= t < end_s; the wrench timeout does not
 // apply.
 struct WrenchJob {
-  std::size_t body = 0;
+  BodyId body;
   WrenchAxes axes = WrenchAxes::kWorld;
   Eigen::Vector3d force = Eigen::Vector3d::Zero();    // [N], at point_m
   Eigen::Vector3d couple = Eigen::Vector3d::Zero();   // [N m]
@@ -56,9 +57,6 @@ enum class JobRefusal { kNone, kBodyFull, kTableFull };
 
 class WrenchTable {
  public:
-  // particle_counts[b] is the number of particles of body b.
-  explicit WrenchTable(std::vector<std::size_t> particle_counts);
-
   // Holds `wrench`, replacing the one held for the same particle. The caller
   // has checked it (the node's wrench intake): a known body and particle,
   // finite numbers. Debug builds assert this.
@@ -70,29 +68,28 @@ class WrenchTable {
   JobRefusal AddJob(const WrenchJob& job, double t_s);
   void Clear();
   // Drops every wrench and job of `body`.
-  void ClearBody(std::size_t body);
-  // A new body, after the others, with `particle_count` particles.
-  void AddBody(std::size_t particle_count);
-  // Drops `body`'s wrenches and renumbers the bodies after it down by one.
-  void RemoveBody(std::size_t body);
+  void ClearBody(BodyId body);
+  // A new body with `particle_count` particles.
+  void AddBody(BodyId body, std::size_t particle_count);
+  // Drops `body`'s wrenches; it takes none from now on.
+  void RemoveBody(BodyId body);
   std::size_t size() const { return entries_.size(); }
   std::size_t job_count() const { return job_count_; }
-  std::size_t job_count(std::size_t body) const { return jobs_per_body_[body]; }
+  std::size_t job_count(BodyId body) const { return bodies_.at(body).jobs; }
 
   static constexpr std::size_t kMaxJobsPerBody = 1000;
   static constexpr std::size_t kMaxJobs = 100000;
 
   // Sums the wrenches active at t_s (start <= t_s and, for timeout_s > 0,
-  // t_s < start + timeout_s; for a job, start <= t_s < end) into loads[b] for every body b that has
-  // one and sets loaded[b]; others are left cleared. Expired wrenches are dropped. Times closer
-  // than tolerance_s count as equal, so that a stamp computed as t_0 + n·dt elsewhere lands on step
-  // n despite round-off. Held wrenches rarely change between steps: when nothing was held or
-  // cleared since the last call and no wrench starts or expires by t_s, the
+  // t_s < start + timeout_s; for a job, start <= t_s < end) into loads[i] for every body that has
+  // one (i its index in `store`) and sets loaded[i]; others are left cleared. Expired wrenches are
+  // dropped. Times closer than tolerance_s count as equal, so that a stamp computed as t_0 + n·dt
+  // elsewhere lands on step n despite round-off. Held wrenches rarely change between steps: when
+  // nothing was held or cleared since the last call and no wrench starts or expires by t_s, the
   // loads of that call still hold and are left alone. Returns whether the
   // loads were summed anew.
-  bool Reduce(double t_s, double timeout_s, double tolerance_s,
-              const std::vector<BodyModel>& models, std::vector<HeldLoads>* loads,
-              std::vector<char>* loaded);
+  bool Reduce(double t_s, double timeout_s, double tolerance_s, const BodyStore& store,
+              std::vector<HeldLoads>* loads, std::vector<char>* loaded);
   // Something else summed into the loads (gravity) changed: the next Reduce
   // sums them anew.
   void MarkLoadsStale() { reduced_ = false; }
@@ -104,7 +101,7 @@ class WrenchTable {
     enum class Kind : std::uint8_t { kParticle, kBody, kJob };
     Kind kind = Kind::kParticle;
     WrenchAxes axes = WrenchAxes::kWorld;
-    std::size_t body = 0;
+    BodyId body;
     std::size_t particle = 0;  // kParticle only
     Eigen::Vector3d force = Eigen::Vector3d::Zero();
     Eigen::Vector3d couple = Eigen::Vector3d::Zero();
@@ -112,15 +109,30 @@ class WrenchTable {
     double start_s = 0.0;
     double end_s = 0.0;  // kJob only; the others end at start + timeout
   };
-  // The slot a held wrench replaces in: (body, particle), or (body, kBodySlot).
-  static constexpr std::uint32_t kBodySlot = 0xFFFFFFFFu;
-  static std::uint64_t Key(std::size_t body, std::uint64_t slot) {
-    return (static_cast<std::uint64_t>(body) << 32) | slot;
+  // What a held wrench replaces: the one of the same body (slot and
+  // generation) and particle, or the body wrench (kBodyWrench).
+  static constexpr std::uint32_t kBodyWrench = 0xFFFFFFFFu;
+  struct Key {
+    std::uint32_t slot;
+    std::uint32_t generation;
+    std::uint32_t particle;
+    friend bool operator==(const Key& a, const Key& b) {
+      return a.slot == b.slot && a.generation == b.generation && a.particle == b.particle;
+    }
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& key) const {
+      return std::hash<std::uint64_t>()((static_cast<std::uint64_t>(key.slot) << 32) |
+                                        key.particle) ^
+             key.generation;
+    }
+  };
+  static Key KeyOf(const Entry& entry) {
+    return {entry.body.slot, entry.body.generation,
+            entry.kind == Entry::Kind::kParticle ? static_cast<std::uint32_t>(entry.particle)
+                                                 : kBodyWrench};
   }
-  static std::uint64_t Key(const Entry& entry) {
-    return Key(entry.body, entry.kind == Entry::Kind::kParticle ? entry.particle : kBodySlot);
-  }
-  static Entry MakeEntry(Entry::Kind kind, std::size_t body, WrenchAxes axes,
+  static Entry MakeEntry(Entry::Kind kind, BodyId body, WrenchAxes axes,
                          const Eigen::Vector3d& force, const Eigen::Vector3d& couple,
                          double start_s);
   void HoldEntry(const Entry& entry);
@@ -128,12 +140,14 @@ class WrenchTable {
   void Erase(std::size_t i);
   // Drops the jobs that ended by t_s.
   void DropEndedJobs(double t_s);
-  void Reindex();
 
-  std::vector<std::size_t> particle_counts_;
-  std::vector<Entry> entries_;                            // in order of arrival
-  std::unordered_map<std::uint64_t, std::size_t> index_;  // key → position, jobs excepted
-  std::vector<std::size_t> jobs_per_body_;
+  struct PerBody {
+    std::size_t particle_count = 0;
+    std::size_t jobs = 0;  // live jobs
+  };
+  BodyMap<PerBody> bodies_;
+  std::vector<Entry> entries_;                           // in order of arrival
+  std::unordered_map<Key, std::size_t, KeyHash> index_;  // key → position, jobs excepted
   std::size_t job_count_ = 0;
   // What the last Reduce summed holds until a Hold or Clear, a change of
   // timeout or tolerance, the earliest start of a wrench not yet active and

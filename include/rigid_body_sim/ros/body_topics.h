@@ -20,6 +20,8 @@
 #include <geometry_msgs/WrenchStamped.h>
 #include <ros/ros.h>
 
+#include "rigid_body_sim/core/body_id.h"
+
 namespace rigid_body_sim {
 
 // A publisher with its subscriber count, kept by connect/disconnect callbacks
@@ -57,14 +59,14 @@ class BodyTopics {
   BodyTopics(const BodyTopics&) = delete;
   BodyTopics& operator=(const BodyTopics&) = delete;
 
-  // A body appended after the others; its topics appear shortly.
-  void Add(const std::string& body);
-  // Body `index` goes now; its topics are shut down shortly.
-  void Remove(std::size_t index);
+  // A new body named `body`; its topics appear shortly.
+  void Add(core::BodyId id, const std::string& body);
+  // The body goes now; its topics are shut down shortly.
+  void Remove(core::BodyId id);
 
-  // Body `index`'s topics, or nullptr while they are not yet advertised.
-  const Topics* at(std::size_t index) const {
-    const Topics* topics = bodies_[index].get();
+  // The body's topics, or nullptr while they are not yet advertised.
+  const Topics* at(core::BodyId id) const {
+    const Topics* topics = bodies_.at(id).get();
     return topics != nullptr && topics->advertised.load(std::memory_order_acquire) ? topics
                                                                                    : nullptr;
   }
@@ -73,7 +75,7 @@ class BodyTopics {
   int step_record_subscribers() const { return step_record_subscribers_; }
   // How many bodies' topics are advertised (diagnostics; start-up progress).
   std::size_t advertised_count() const { return advertised_.load(std::memory_order_relaxed); }
-  std::size_t size() const { return bodies_.size(); }
+  std::size_t size() const { return body_count_; }
 
  private:
   struct Task {
@@ -87,8 +89,9 @@ class BodyTopics {
   ros::NodeHandle private_nh_;
   const bool enabled_;
   const WrenchCallback on_wrench_;
-  std::vector<std::shared_ptr<Topics>> bodies_;  // stepping thread only
-  int step_record_subscribers_ = 0;              // stepping thread only
+  core::BodyMap<std::shared_ptr<Topics>> bodies_;  // stepping thread only
+  std::size_t body_count_ = 0;                     // stepping thread only
+  int step_record_subscribers_ = 0;                // stepping thread only
   std::atomic<std::size_t> advertised_{0};
   std::mutex mutex_;
   std::condition_variable wake_;

@@ -10,11 +10,15 @@
 
 namespace rigid_body_sim {
 
-enum class LogLevel { kInfo, kWarn, kError };
+enum class LogLevel { kDebug, kInfo, kWarn, kError };
 
 // Queues `line` for the log thread (started on first use). Lines beyond a
 // bounded backlog are dropped and counted in the next line that gets through.
 void LogOffThread(LogLevel level, std::string line);
+// Whether a line at `level` would be written: always, but at kDebug only
+// while the node's logger is set to DEBUG (rosconsole), so that a caller need
+// not even format a line nobody reads.
+bool LogEnabled(LogLevel level);
 
 // printf-style formatting for LogOffThread.
 std::string Format(const char* format, ...) __attribute__((format(printf, 1, 2)));

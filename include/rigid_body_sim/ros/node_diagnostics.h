@@ -1,6 +1,10 @@
 // What the node reports about itself: the /diagnostics status and its keys,
 // the INFO status line, a log line per frozen body, and the statistics they
 // draw on (step times over each report period, conservation drifts).
+//
+// It holds no reference into the node's parts: the loop hands it the world
+// and, at each report, a NodeStatus of the other parts; WorldEditor hands it
+// every change the services and subscriptions make to the world.
 #pragma once
 
 #include <chrono>
@@ -14,45 +18,38 @@
 #include "rigid_body_sim/core/conservation_monitor.h"
 #include "rigid_body_sim/core/step_pacer.h"
 #include "rigid_body_sim/core/world.h"
-#include "rigid_body_sim/ros/body_topics.h"
-#include "rigid_body_sim/ros/lockstep_gate.h"
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/node_status.h"
 #include "rigid_body_sim/ros/scene_params.h"
-#include "rigid_body_sim/ros/state_hash_worker.h"
-#include "rigid_body_sim/ros/wrench_intake.h"
+#include "rigid_body_sim/ros/world_event.h"
 
 namespace rigid_body_sim {
 
-class NodeDiagnostics {
+class NodeDiagnostics : public core::BodyListener {
  public:
   using Clock = core::StepPacer::Clock;
   // Status and diagnostics period, wall time.
   static constexpr std::chrono::seconds kReportPeriod{1};
 
-  // Reads what it reports from the node's parts, which must outlive it;
-  // `lockstep` is null without ~lockstep.
+  // Drifts measured from `world`'s current state; `settings` read here only.
   NodeDiagnostics(const ros::NodeHandle& private_nh, const NodeSettings& settings,
-                  const core::World& world, const core::StepPacer& pacer,
-                  const WrenchIntake& intake, const BodyTopics& body_topics,
-                  const LockstepGate* lockstep, const StateHashWorker& state_hashes);
+                  const core::World& world);
 
   // Stepping starts now, at the world's current time.
-  void Start(Clock::time_point now);
+  void Start(Clock::time_point now, const core::World& world);
   // After each step: its wall time; logs newly frozen bodies; advances the
   // conservation sweep.
-  void RecordStep(Clock::duration step_time, const ros::Time& stamp);
+  void RecordStep(const core::World& world, Clock::duration step_time, const ros::Time& stamp);
   // Closes the report window: the status line (at ~status_period) and
-  // /diagnostics.
-  void Report(Clock::time_point now, const ros::Time& stamp, bool paused);
+  // /diagnostics, from `world` and the other parts' `status`.
+  void Report(Clock::time_point now, const NodeStatus& status, const core::World& world);
 
-  // Events that change what the conservation drifts are measured against.
-  void OnWrenchHeld(std::size_t body) { conservation_.MarkLoaded(body); }
-  void OnBodyStateSet(std::size_t body);
-  void OnWrenchesCleared() { conservation_.RebaseAll(world_); }
-  void OnReset();
-  // The world appended a body / removed `body`.
-  void OnBodyAdded();
-  void OnBodyRemoved(std::size_t body);
+  // A change to the world between steps (`world` as it is after it): what the
+  // conservation drifts are measured against, and which faults were logged.
+  void OnWorldEvent(const WorldEvent& event, const core::World& world);
+  // A body joined or left `world`: referenced, or forgotten.
+  void OnBodyAdded(const core::World& world, core::BodyId body) override;
+  void OnBodyRemoved(const core::World& world, core::BodyId body) override;
 
  private:
   // Statistics over one report period (about a second of wall time).
@@ -64,34 +61,35 @@ class NodeDiagnostics {
     Clock::duration step_time_max{};
     std::uint32_t substeps_max = 1;
   };
+  // A window as reported.
+  struct WindowSummary {
+    double step_time_mean_us = 0.0;
+    double step_time_max_us = 0.0;
+    double achieved_real_time_factor = 0.0;
+    std::uint32_t substeps_max = 1;
+  };
 
-  void ReportNewFaults(const ros::Time& stamp);
+  void ReportNewFaults(const core::World& world, const ros::Time& stamp);
+  void LogStatusLine(Clock::time_point now, const NodeStatus& status, const core::World& world,
+                     const WindowSummary& window);
+  // The status /diagnostics publishes next, into report_.
+  void Compose(const NodeStatus& node, const core::World& world, const WindowSummary& window,
+               bool lockstep_timed_out);
+  // diagnostic_updater's task: report_, composed just before.
   void Fill(diagnostic_updater::DiagnosticStatusWrapper& status);
 
-  const NodeSettings& settings_;
-  const core::World& world_;
-  const core::StepPacer& pacer_;
-  const WrenchIntake& intake_;
-  const BodyTopics& body_topics_;
-  const LockstepGate* lockstep_;
-  const StateHashWorker& state_hashes_;
+  const double status_period_s_;
+  const ShardSettings shard_;
   core::ConservationMonitor conservation_;
   const std::size_t sweep_per_step_;  // bodies the conservation sweep measures per step
   diagnostic_updater::Updater updater_;
+  diagnostic_updater::DiagnosticStatusWrapper report_;
   Window window_;
   std::size_t frozen_seen_ = 0;
-  std::vector<core::BodyFault> reported_faults_;  // last fault logged per body
-  LogThrottle fault_errors_{1.0};                 // one frozen-body line a second at most
-  // The last completed window, as reported.
-  double step_time_mean_us_ = 0.0;
-  double step_time_max_us_ = 0.0;
-  double achieved_real_time_factor_ = 0.0;
-  std::uint32_t substeps_max_ = 1;
-  bool paused_ = false;
-  ros::Time stamp_;
-  std::uint64_t overruns_at_last_status_ = 0;  // for the status line's count
+  core::BodyMap<core::BodyFault> reported_faults_;  // last fault logged per body
+  LogThrottle fault_errors_{1.0};                   // one frozen-body line a second at most
+  std::uint64_t overruns_at_last_status_ = 0;       // for the status line's count
   std::uint64_t lockstep_timeouts_at_last_report_ = 0;
-  bool lockstep_timed_out_ = false;  // in the last report window
   Clock::time_point next_status_{};
 };
 

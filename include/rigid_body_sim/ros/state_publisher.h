@@ -15,7 +15,10 @@
 
 namespace rigid_body_sim {
 
-class StatePublisher {
+// A core::BodyListener of the world it publishes: a body's TF frame, marker
+// and topics follow it from the next cycle on (a DELETE for the marker of one
+// that went).
+class StatePublisher : public core::BodyListener {
  public:
   // Advertises the shared topics now and queues each body's own
   // (BodyTopics); messages on ~<body>/wrench go to `on_body_wrench`.
@@ -26,10 +29,8 @@ class StatePublisher {
   // From the next Publish on.
   void SetPublishTf(bool publish_tf) { publish_tf_ = publish_tf; }
 
-  // The world appended a body / removed body `index`: its TF frame, marker
-  // and topics follow from the next cycle (a DELETE for its marker).
-  void AddBody(const core::BodyModel& model);
-  void RemoveBody(std::size_t index);
+  void OnBodyAdded(const core::World& world, core::BodyId id) override;
+  void OnBodyRemoved(const core::World& world, core::BodyId id) override;
 
   const BodyTopics& body_topics() const { return body_topics_; }
   // Subscribers connected to ~bodies.
@@ -54,10 +55,13 @@ class StatePublisher {
   const double particle_marker_diameter_m_;
   const std::string tf_prefix_;
   const core::ImuNoise imu_noise_;
-  std::vector<std::string> child_frames_;  // TF frame of each body
-  // Each body's ~particles marker id: its scene index, then one more per spawn,
-  // so that a delete does not renumber the others in rviz.
-  std::vector<int> marker_ids_;
+  struct PerBody {
+    std::string child_frame;  // its TF frame
+    // Its ~particles marker id: its scene index, then one more per spawn, so
+    // that a delete does not renumber the others in rviz.
+    int marker_id = 0;
+  };
+  core::BodyMap<PerBody> per_body_;
   int next_marker_id_ = 0;
   std::vector<int> deleted_marker_ids_;  // DELETEs for the next ~particles
   BodyTopics body_topics_;

@@ -42,13 +42,13 @@ constexpr std::size_t kWrenchMsgRejectionCount = 8;
 // "rejected_" + this), "other_shard".
 const char* ToString(WrenchMsgRejection rejection);
 
-// What a message is checked against: the scene's bodies and the frames that
+// What a message is checked against: the world's bodies and the frames that
 // name world axes and each body's axes.
 struct WrenchFrames {
+  // Names and particle counts of the bodies, read on the stepping thread.
+  const core::World* world = nullptr;
   std::string world_frame;
   std::string tf_prefix;
-  std::unordered_map<std::string, std::size_t> body_index;  // name → scene order
-  std::vector<std::size_t> particle_counts;                 // per body
   // With shards: the bodies other shards simulate → the owning shard's index.
   std::unordered_map<std::string, std::uint32_t> other_shard_bodies;
   std::uint32_t shard_count = 1;
@@ -62,9 +62,6 @@ std::string QuotedName(const std::string& name);
 // Why `body` is not one of this node's: "unknown body 'x'", or, for a body of
 // another shard, "body 'x' is simulated by shard 1 of 2".
 std::string NotHereMessage(const std::string& body, const WrenchFrames& frames);
-// The frames after the world appended `model` / removed body `body`.
-void AddBodyFrame(const core::BodyModel& model, WrenchFrames* frames);
-void RemoveBodyFrame(const std::string& name, WrenchFrames* frames);
 
 // The axes `frame_id` names for a wrench on `body`: "" or the world frame →
 // world axes; the body's name, with or without tf_prefix, → body axes; a
@@ -75,12 +72,16 @@ std::optional<core::WrenchAxes> AxesOfFrame(const std::string& frame_id, const s
 std::string UnknownFrameMessage(const std::string& frame_id, const std::string& body,
                                 const WrenchFrames& frames);
 
-struct CheckedWrench {
-  core::ParticleWrench wrench;  // valid when accepted
+// A message checked into a core wrench (core::ParticleWrench or BodyWrench).
+template <typename CoreWrench>
+struct Checked {
+  CoreWrench wrench;  // valid when accepted
   WrenchMsgRejection rejection = WrenchMsgRejection::kNone;
   std::string detail;  // one line for the warning
   bool accepted() const { return rejection == WrenchMsgRejection::kNone; }
 };
+using CheckedWrench = Checked<core::ParticleWrench>;
+using CheckedBodyWrench = Checked<core::BodyWrench>;
 
 // The check itself, without counting; frame_id as AxesOfFrame. Times are
 // simulation times counted from `start_stamp`: a zero stamp starts at
@@ -89,12 +90,6 @@ struct CheckedWrench {
 CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
                                   const ros::Time& start_stamp, double next_step_time_s);
 
-struct CheckedBodyWrench {
-  core::BodyWrench wrench;  // valid when accepted
-  WrenchMsgRejection rejection = WrenchMsgRejection::kNone;
-  std::string detail;
-  bool accepted() const { return rejection == WrenchMsgRejection::kNone; }
-};
 // A message on ~<body>/wrench, checked as CheckParticleWrench checks.
 CheckedBodyWrench CheckBodyWrench(const geometry_msgs::WrenchStamped& msg, const std::string& body,
                                   const WrenchFrames& frames, const ros::Time& start_stamp,
@@ -113,8 +108,6 @@ class WrenchIntake {
   explicit WrenchIntake(WrenchFrames frames) : frames_(std::move(frames)) {}
 
   const WrenchFrames& frames() const { return frames_; }
-  void AddBody(const core::BodyModel& model) { AddBodyFrame(model, &frames_); }
-  void RemoveBody(const std::string& name) { RemoveBodyFrame(name, &frames_); }
 
   // The checked wrench, or nullopt with the rejection counted and warned.
   std::optional<core::ParticleWrench> Take(const ParticleWrench& msg, const ros::Time& start_stamp,

@@ -12,23 +12,13 @@
 #include "lane_math.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/step_policy.h"
 
 namespace rigid_body_sim::core {
 
 // Bodies a lane kernel steps at once.
 constexpr std::size_t kLanes = 8;
-
-// Whether a body may take the lanes: dt·|L|·max_k(1/λ_k) <= 1/16, so that
-// every half-angle of its step is below 1/16 (no sub-step of the schemes'
-// compositions is longer than 2 dt, and each turns by at most half its
-// length times |L|·max_k(1/λ_k)), where SinCosSmall's series is exact to
-// round-off. Then |ω|·dt is far below π.
-inline bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double dt_s) {
-  constexpr double kMaxTurn = 1.0 / 16;
-  const double turn_rate = dt_s * model.inverse_principal_moments().maxCoeff();
-  // Squared, to spare the square root; false for a NaN.
-  return turn_rate * turn_rate * state.angular_momentum.squaredNorm() <= kMaxTurn * kMaxTurn;
-}
 
 // What every lane kernel reads of kLanes bodies, in structure-of-arrays form.
 struct LaneBodies {
@@ -139,21 +129,19 @@ inline __attribute__((always_inline)) void CompositionFreeLanes(const AxisSplitt
 // time through `step_lanes(dt_s, lanes)`, the others through
 // `step_one(model, dt_s, state)`.
 template <typename StepLanes, typename StepOne>
-void StepFreeInLanes(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
-                     double dt_s, std::vector<BodyState>* states, StepLanes step_lanes,
-                     StepOne step_one) {
+void StepFreeInLanes(const BodyBatch& batch, double dt_s, StepLanes step_lanes, StepOne step_one) {
   FreeLanes lanes;
   std::size_t lane_bodies[kLanes];
   std::size_t filled = 0;
   const auto flush = [&] {
     if (filled < kLanes) lanes.FillIdle(filled);
     step_lanes(dt_s, &lanes);
-    for (std::size_t l = 0; l < filled; ++l) lanes.Store(l, &(*states)[lane_bodies[l]]);
+    for (std::size_t l = 0; l < filled; ++l) lanes.Store(l, &batch.states[lane_bodies[l]]);
     filled = 0;
   };
-  for (const std::size_t body : bodies) {
-    const BodyModel& model = models[body];
-    BodyState& state = (*states)[body];
+  for (const std::size_t body : batch) {
+    const BodyModel& model = batch.models[body];
+    BodyState& state = batch.states[body];
     if (!FitsFreeLanes(model, state, dt_s)) {
       step_one(model, dt_s, &state);  // too fast for the lanes' series
       continue;

@@ -81,39 +81,41 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
     Quaternion q = Multiply(Quaternion{b.orientation[0][l], b.orientation[1][l],
                                        b.orientation[2][l], b.orientation[3][l]},
                             axes);
-    double x[3], p[3], lw[3], fw[3], fp[3] = {}, tw[3], tp[3] = {}, c[9];
+    double x[3], p[3], L_W[3], F_W[3], F_P[3] = {}, tau_W[3], tau_P[3] = {}, c[9];
     for (int k = 0; k < 3; ++k) {
       x[k] = b.position[k][l];
       p[k] = b.linear_momentum[k][l];
-      lw[k] = b.angular_momentum[k][l];
-      fw[k] = b.force_world[k][l];
-      tw[k] = b.torque_world[k][l];
+      L_W[k] = b.angular_momentum[k][l];
+      F_W[k] = b.force_world[k][l];
+      tau_W[k] = b.torque_world[k][l];
       if constexpr (kBodyAxes) {
-        fp[k] = b.force_principal[k][l];
-        tp[k] = b.torque_principal[k][l];
+        F_P[k] = b.force_principal[k][l];
+        tau_P[k] = b.torque_principal[k][l];
       }
     }
     for (int k = 0; k < 9; ++k) c[k] = b.moment[k][l];
     const double inverse_mass = 1.0 / b.mass[l];
     const double a1 = b.axis1[l], a3 = b.axis3[l], casimir = b.casimir[l];
 
-    // p += w F, L += w τ at the current pose (A = R_WP).
+    // p += w F, L += w τ at the current pose R_WP.
     const auto kick = [&](double w) __attribute__((always_inline)) {
-      double a[9];
-      lanes::RotationMatrix(q, a);
-      // M = C_P Aᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
+      double R_WP[9];
+      lanes::RotationMatrix(q, R_WP);
+      // M = C_P R_WPᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
       const auto m = [&](int i, int j) __attribute__((always_inline)) {
-        return c[3 * i] * a[3 * j] + c[3 * i + 1] * a[3 * j + 1] + c[3 * i + 2] * a[3 * j + 2];
+        return c[3 * i] * R_WP[3 * j] + c[3 * i + 1] * R_WP[3 * j + 1] +
+               c[3 * i + 2] * R_WP[3 * j + 2];
       };
       const double moment_torque[3] = {m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1)};
       for (int k = 0; k < 3; ++k) {
-        double force = fw[k], torque = tw[k] + moment_torque[k];
+        double force = F_W[k], torque = tau_W[k] + moment_torque[k];
         if constexpr (kBodyAxes) {
-          force += a[3 * k] * fp[0] + a[3 * k + 1] * fp[1] + a[3 * k + 2] * fp[2];
-          torque += a[3 * k] * tp[0] + a[3 * k + 1] * tp[1] + a[3 * k + 2] * tp[2];
+          force += R_WP[3 * k] * F_P[0] + R_WP[3 * k + 1] * F_P[1] + R_WP[3 * k + 2] * F_P[2];
+          torque +=
+              R_WP[3 * k] * tau_P[0] + R_WP[3 * k + 1] * tau_P[1] + R_WP[3 * k + 2] * tau_P[2];
         }
         p[k] += w * force;
-        lw[k] += w * torque;
+        L_W[k] += w * torque;
       }
     };
 
@@ -126,16 +128,16 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
       }
       for (int k = 0; k < 3; ++k) x[k] += drift_s * inverse_mass * p[k];
       double m[3];  // Π = R_WPᵀ L
-      lanes::RotateInverse(q, lw[0], lw[1], lw[2], m);
+      lanes::RotateInverse(q, L_W[0], L_W[1], L_W[2], m);
       Axis1Flow(a1, 0.5 * spin_s, m, &q);
       Axis3Flow(a3, spin_s, m, &q);
       Axis1Flow(a1, 0.5 * spin_s, m, &q);
       const double turn = spin_s * casimir;
-      q = Multiply(ExpMapSmall(turn * lw[0], turn * lw[1], turn * lw[2]), q);
+      q = Multiply(ExpMapSmall(turn * L_W[0], turn * L_W[1], turn * L_W[2]), q);
       if constexpr (kDamped) {
         for (int k = 0; k < 3; ++k) {
           p[k] *= decays.linear_factor[substep_kind[s]][l];
-          lw[k] *= decays.angular_factor[substep_kind[s]][l];
+          L_W[k] *= decays.angular_factor[substep_kind[s]][l];
         }
       }
       kick(kicks[s + 1]);
@@ -145,7 +147,7 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
     for (int k = 0; k < 3; ++k) {
       b.position[k][l] = x[k];
       b.linear_momentum[k][l] = p[k];
-      b.angular_momentum[k][l] = lw[k];
+      b.angular_momentum[k][l] = L_W[k];
     }
     b.orientation[0][l] = q.x;
     b.orientation[1][l] = q.y;

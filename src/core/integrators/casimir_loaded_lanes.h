@@ -17,21 +17,6 @@
 
 namespace rigid_body_sim::core {
 
-// Whether a loaded body may take the lanes: every half-angle of its step,
-// with L grown by at most dt times the load's torque bound, stays below 1/16
-// (the longest sub-step is 1.36 dt), where the lanes' series are exact to
-// round-off.
-inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, const HeldLoads& loads,
-                            double dt_s) {
-  constexpr double kMaxTurn = 1.0 / 16;
-  constexpr double kLongestSubstep = 1.36;
-  const double turn = kLongestSubstep * dt_s * model.inverse_principal_moments().maxCoeff();
-  const double kick = dt_s * loads.TorqueBound();
-  // Squared, to spare the root: (|L| + kick)² <= 2 |L|² + 2 kick².
-  return turn * turn * 2.0 * (state.angular_momentum.squaredNorm() + kick * kick) <=
-         kMaxTurn * kMaxTurn;
-}
-
 struct LoadedLanes : LaneBodies {
   // Load (HeldLoads) with its body-axes parts in the principal frame P
   // (HeldLoads::InPrincipalFrame): F = F_W + R_WP F_P,
@@ -56,16 +41,6 @@ struct LoadedLanes : LaneBodies {
   void Store(std::size_t lane, BodyState* state) const;
 };
 
-// Whether a damped body may take the loaded lanes: c·dt <= 1/16 for both
-// rates. The backward inner sub-step then lengthens the rescaled time of its
-// rotation by at most e^{1.71/16} < 1.12 and the kicks' growth by less, well
-// within FitsLoadedLanes' margin (its 1.36 dt against the half-angles' 0.85 dt),
-// and the step is far from TooStiffForComposition.
-inline bool DampingFitsLoadedLanes(const Damping& damping, double dt_s) {
-  constexpr double kMaxDecay = 1.0 / 16;
-  return std::max(damping.linear_per_s, damping.angular_per_s) * dt_s <= kMaxDecay;
-}
-
 // Advances every lane by h; the bodies in use must fit (FitsLoadedLanes,
 // DampingFitsLoadedLanes). Clears body_axes and damped.
 void CasimirLoadedStep4(double h, LoadedLanes* lanes);
@@ -80,9 +55,7 @@ void CasimirLoadedStep4(double h, LoadedLanes* lanes);
 // `loaded_lanes(dt_s, lanes)` (nullptr: a scheme without them), the rest
 // `step_one(model, load, dt_s, state)`.
 template <typename FreeKernel, typename LoadedKernel, typename StepOne>
-void StepLoadedInLanes(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
-                       const std::vector<HeldLoads>& loads, double dt_s,
-                       std::vector<BodyState>* states, FreeKernel free_lanes,
+void StepLoadedInLanes(const BodyBatch& batch, double dt_s, FreeKernel free_lanes,
                        LoadedKernel loaded_lanes, StepOne step_one) {
   constexpr bool kHasLoadedLanes = !std::is_same_v<LoadedKernel, std::nullptr_t>;
   FreeLanes pulled;  // bodies under a constant force
@@ -93,10 +66,10 @@ void StepLoadedInLanes(const std::vector<BodyModel>& models, const std::vector<s
     free_lanes(dt_s, &pulled);
     for (std::size_t l = 0; l < pulled_count; ++l) {
       const std::size_t body = pulled_bodies[l];
-      BodyState& state = (*states)[body];
+      BodyState& state = batch.states[body];
       pulled.Store(l, &state);
-      const Eigen::Vector3d impulse = dt_s * loads[body].force_world();
-      state.position += (0.5 * dt_s * models[body].inverse_mass()) * impulse;
+      const Eigen::Vector3d impulse = dt_s * batch.loads[body].force_world();
+      state.position += (0.5 * dt_s * batch.models[body].inverse_mass()) * impulse;
       state.linear_momentum += impulse;
     }
     pulled_count = 0;
@@ -117,14 +90,15 @@ void StepLoadedInLanes(const std::vector<BodyModel>& models, const std::vector<s
       const std::size_t count = turned_count[group];
       if (count < kLanes) lanes.FillIdle(count);
       loaded_lanes(dt_s, &lanes);
-      for (std::size_t l = 0; l < count; ++l) lanes.Store(l, &(*states)[turned_bodies[group][l]]);
+      for (std::size_t l = 0; l < count; ++l)
+        lanes.Store(l, &batch.states[turned_bodies[group][l]]);
     }
     turned_count[group] = 0;
   };
-  for (const std::size_t body : bodies) {
-    const BodyModel& model = models[body];
-    const HeldLoads& load = loads[body];
-    BodyState& state = (*states)[body];
+  for (const std::size_t body : batch) {
+    const BodyModel& model = batch.models[body];
+    const HeldLoads& load = batch.loads[body];
+    BodyState& state = batch.states[body];
     const bool damped = load.has_damping();
     if (!load.has_torque() && !damped && FitsFreeLanes(model, state, dt_s)) {
       pulled.Load(pulled_count, model, state);

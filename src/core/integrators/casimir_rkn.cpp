@@ -69,10 +69,8 @@ double CasimirRknIntegrator<kOrder>::RotationErrorRate(const BodyModel& model,
 }
 
 template <int kOrder>
-void CasimirRknIntegrator<kOrder>::StepFree(const std::vector<BodyModel>& models,
-                                            const std::vector<std::size_t>& bodies, double dt_s,
-                                            std::vector<BodyState>* states) const {
-  StepFreeInLanes(models, bodies, dt_s, states, kLanesStep<kOrder>,
+void CasimirRknIntegrator<kOrder>::StepFree(const BodyBatch& batch, double dt_s) const {
+  StepFreeInLanes(batch, dt_s, kLanesStep<kOrder>,
                   [this](const BodyModel& model, double h, BodyState* state) {
                     Step(model, nullptr, h, state);
                   });
@@ -80,11 +78,8 @@ void CasimirRknIntegrator<kOrder>::StepFree(const std::vector<BodyModel>& models
 
 // Bodies under a constant force in the free lanes; the others one by one.
 template <int kOrder>
-void CasimirRknIntegrator<kOrder>::StepLoaded(const std::vector<BodyModel>& models,
-                                              const std::vector<std::size_t>& bodies,
-                                              const std::vector<HeldLoads>& loads, double dt_s,
-                                              std::vector<BodyState>* states) const {
-  StepLoadedInLanes(models, bodies, loads, dt_s, states, kLanesStep<kOrder>, nullptr,
+void CasimirRknIntegrator<kOrder>::StepLoaded(const BodyBatch& batch, double dt_s) const {
+  StepLoadedInLanes(batch, dt_s, kLanesStep<kOrder>, nullptr,
                     [this](const BodyModel& model, const HeldLoads& load, double h,
                            BodyState* state) { Step(model, &load, h, state); });
 }

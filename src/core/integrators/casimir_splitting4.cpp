@@ -59,21 +59,15 @@ double CasimirSplitting4Integrator::RotationErrorRate(const BodyModel& model,
   return CasimirErrorRate(model, CasimirSplit(model), state, dt_s);
 }
 
-void CasimirSplitting4Integrator::StepFree(const std::vector<BodyModel>& models,
-                                           const std::vector<std::size_t>& bodies, double dt_s,
-                                           std::vector<BodyState>* states) const {
-  StepFreeInLanes(models, bodies, dt_s, states, CasimirSplitting4FreeLanes,
+void CasimirSplitting4Integrator::StepFree(const BodyBatch& batch, double dt_s) const {
+  StepFreeInLanes(batch, dt_s, CasimirSplitting4FreeLanes,
                   [this](const BodyModel& model, double h, BodyState* state) {
                     Step(model, nullptr, h, state);
                   });
 }
 
-void CasimirSplitting4Integrator::StepLoaded(const std::vector<BodyModel>& models,
-                                             const std::vector<std::size_t>& bodies,
-                                             const std::vector<HeldLoads>& loads, double dt_s,
-                                             std::vector<BodyState>* states) const {
-  StepLoadedInLanes(models, bodies, loads, dt_s, states, CasimirSplitting4FreeLanes,
-                    CasimirLoadedStep4,
+void CasimirSplitting4Integrator::StepLoaded(const BodyBatch& batch, double dt_s) const {
+  StepLoadedInLanes(batch, dt_s, CasimirSplitting4FreeLanes, CasimirLoadedStep4,
                     [this](const BodyModel& model, const HeldLoads& load, double h,
                            BodyState* state) { Step(model, &load, h, state); });
 }

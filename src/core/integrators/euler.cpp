@@ -22,16 +22,16 @@ void EulerIntegrator::Step(const BodyModel& model, const Load* load, double dt_s
   const Damping damping = DampingOf(load);
   state->linear_momentum *= DecayOver(damping.linear_per_s, dt_s).factor;
   state->angular_momentum *= DecayOver(damping.angular_per_s, dt_s).factor;
-  Eigen::Matrix3d a = state->orientation.toRotationMatrix();
-  // ω = I⁻¹L with I⁻¹ = A Ī⁻¹ Aᵀ: what the lecture computes at the end of the previous step.
-  const Eigen::Vector3d omega = AngularVelocity(model, a, state->angular_momentum);
-  const Wrench wrench = load != nullptr ? load->At(0.0, a) : Wrench{};
+  Eigen::Matrix3d R_WB = state->orientation.toRotationMatrix();
+  // ω = I⁻¹L with I⁻¹ = R_WB Ī⁻¹ R_WBᵀ: what the lecture computes at the end of the previous step.
+  const Eigen::Vector3d omega = AngularVelocity(model, R_WB, state->angular_momentum);
+  const Wrench wrench = load != nullptr ? load->At(0.0, R_WB) : Wrench{};
   state->position += dt_s * model.inverse_mass() * state->linear_momentum;
   state->linear_momentum += dt_s * wrench.force;
-  a += dt_s * Skew(omega) * a;
+  R_WB += dt_s * Skew(omega) * R_WB;
   state->angular_momentum += dt_s * wrench.torque;
-  GramSchmidt(&a);
-  state->orientation = Eigen::Quaterniond(a).normalized();
+  GramSchmidt(&R_WB);
+  state->orientation = Eigen::Quaterniond(R_WB).normalized();
 }
 
 }  // namespace rigid_body_sim::core

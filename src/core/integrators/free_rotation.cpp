@@ -60,15 +60,15 @@ void LiePoissonRotation(const BodyModel& model, const Eigen::Vector3d& angular_m
 }
 
 void GramSchmidt(Eigen::Matrix3d* rotation) {
-  Eigen::Matrix3d& a = *rotation;
-  const Eigen::Vector3d b1 = a.col(0).normalized();
-  Eigen::Vector3d b2 = a.col(1) - b1.dot(a.col(1)) * b1;
+  Eigen::Matrix3d& R = *rotation;
+  const Eigen::Vector3d b1 = R.col(0).normalized();
+  Eigen::Vector3d b2 = R.col(1) - b1.dot(R.col(1)) * b1;
   b2.normalize();
-  Eigen::Vector3d b3 = a.col(2) - b1.dot(a.col(2)) * b1 - b2.dot(a.col(2)) * b2;
+  Eigen::Vector3d b3 = R.col(2) - b1.dot(R.col(2)) * b1 - b2.dot(R.col(2)) * b2;
   b3.normalize();
-  a.col(0) = b1;
-  a.col(1) = b2;
-  a.col(2) = b3;
+  R.col(0) = b1;
+  R.col(1) = b2;
+  R.col(2) = b3;
 }
 
 }  // namespace rigid_body_sim::core

@@ -26,7 +26,7 @@ inline Quaternion Multiply(const Quaternion& a, const Quaternion& b) {
       a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
 }
 
-// exp of the rotation vector θ for |θ| <= 1/16, by the series of cos(|θ|/2)
+// exp of the rotation vector θ for |θ| <= kSeriesMaxAngle, by the series of cos(|θ|/2)
 // and sin(|θ|/2)/|θ| in |θ|²: no square root, no division (truncation <
 // 1e-21). As a rotation increment (x, y, z, w − 1) (free_rotation.h), and
 // as the unit quaternion.

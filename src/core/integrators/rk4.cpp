@@ -24,15 +24,15 @@ struct Stage {
 Derivative Evaluate(const BodyModel& model, const Load* load, double t_s, const Stage& y) {
   const Eigen::Quaterniond q(y.orientation[0], y.orientation[1], y.orientation[2],
                              y.orientation[3]);
-  const Eigen::Matrix3d a = q.normalized().toRotationMatrix();
-  const Eigen::Vector3d omega = AngularVelocity(model, a, y.angular_momentum);
+  const Eigen::Matrix3d R_WB = q.normalized().toRotationMatrix();
+  const Eigen::Vector3d omega = AngularVelocity(model, R_WB, y.angular_momentum);
   Derivative d;
   d.velocity = model.inverse_mass() * y.linear_momentum;
   // q̇ = ½ (0, ω) ⊗ q for ω in world axes.
   const Eigen::Quaterniond rate = Eigen::Quaterniond(0.0, omega.x(), omega.y(), omega.z()) * q;
   d.orientation_rate << 0.5 * rate.w(), 0.5 * rate.x(), 0.5 * rate.y(), 0.5 * rate.z();
   if (load != nullptr) {
-    const Wrench wrench = load->At(t_s, a);
+    const Wrench wrench = load->At(t_s, R_WB);
     d.force = wrench.force;
     d.torque = wrench.torque;
   } else {

@@ -22,11 +22,8 @@ class CasimirSplitting4Integrator final : public Integrator {
   void Step(const BodyModel& model, const Load* load, double dt_s, BodyState* state) const override;
   double RotationErrorRate(const BodyModel& model, const BodyState& state,
                            double dt_s) const override;
-  void StepFree(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
-                double dt_s, std::vector<BodyState>* states) const override;
-  void StepLoaded(const std::vector<BodyModel>& models, const std::vector<std::size_t>& bodies,
-                  const std::vector<HeldLoads>& loads, double dt_s,
-                  std::vector<BodyState>* states) const override;
+  void StepFree(const BodyBatch& batch, double dt_s) const override;
+  void StepLoaded(const BodyBatch& batch, double dt_s) const override;
 };
 
 }  // namespace rigid_body_sim::core

@@ -8,10 +8,11 @@
 #include <Eigen/Geometry>
 
 #include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/step_policy.h"
 
 namespace rigid_body_sim::core {
 
-// sin x and cos x − 1 for |x| <= 1/16 by their Taylor series, whose
+// sin x and cos x − 1 for |x| <= kSeriesMaxAngle by their Taylor series, whose
 // truncation error (< 1e-20 relative) is far below round-off. cos x − 1 keeps
 // its relative accuracy, which 1 + (cos x − 1) rounds away. No branch and no
 // call, so a loop over SIMD lanes vectorises it.
@@ -29,11 +30,11 @@ inline void SinCosSmall(double x, double* sin_x, double* cos_x) {
   *cos_x = 1.0 + cos_x_minus_one;
 }
 
-// sin x and cos x (− 1): the series where |x| <= 1/16, std::sin/std::cos
+// sin x and cos x (− 1): the series where |x| <= kSeriesMaxAngle, std::sin/std::cos
 // elsewhere. Step angles are mostly tiny, and this is several times cheaper
 // there.
 inline void SinCos(double x, double* sin_x, double* cos_x) {
-  if (std::abs(x) > 0.0625) {
+  if (std::abs(x) > kSeriesMaxAngle) {
     *sin_x = std::sin(x);
     *cos_x = std::cos(x);
     return;
@@ -42,7 +43,7 @@ inline void SinCos(double x, double* sin_x, double* cos_x) {
 }
 
 inline void SinCosMinusOne(double x, double* sin_x, double* cos_x_minus_one) {
-  if (std::abs(x) > 0.0625) {
+  if (std::abs(x) > kSeriesMaxAngle) {
     *sin_x = std::sin(x);
     *cos_x_minus_one = std::cos(x) - 1.0;  // >= 2e-3 in size: 2 digits lost at most
     return;

@@ -1,0 +1,141 @@
+// How a body takes a World step, decided in one place from named limits
+// (each written once here): at rest (skipped), in one step (batched, through
+// the SIMD lanes where the scheme has them and the body fits), in n substeps
+// of dt/n, or not at all (frozen). World::Step classifies each body with
+// PlanStep; the lane kernels ask FitsFreeLanes / FitsLoadedLanes.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/held_loads.h"
+
+namespace rigid_body_sim::core {
+
+class Integrator;
+
+// The angle [rad] a substep may turn through the parts of the motion that the
+// scheme or the kicks do not follow exactly (Integrator::RotationErrorRate,
+// HeldLoads::TurnRate).
+constexpr double kMaxSubstepAngle = 0.04;
+// The largest angle [rad] at which the small-angle series (SinCosSmall,
+// ExpMapSmall) are exact to round-off (truncation < 1e-20 relative).
+constexpr double kSeriesMaxAngle = 1.0 / 16;
+// The most e-folds c·dt the damping may shrink p or L by in one lanes step.
+constexpr double kLanesMaxDecay = 1.0 / 16;
+// Every rate SubstepsFor weighs is at most this times |L|·max_k(1/λ_k) (the
+// Casimir rate ∛(αβ(α + β)) <= ∛2·max(α, β)).
+inline const double kRateBoundFactor = std::cbrt(2.0);
+// The longest sub-step of the loaded lanes' composition, in units of dt.
+constexpr double kLanesLongestSubstep = 1.36;
+
+// The turn [rad] per unit |L| [kg m²/s] that no flow of a step of dt_s
+// exceeds, times `factor`: factor·dt·max_k(1/λ_k). A null moment's inverse
+// counts as 0: a point mass never turns.
+inline double TurnPerMomentum(const BodyModel& model, double dt_s, double factor = 1.0) {
+  return factor * dt_s * model.inverse_principal_moments().maxCoeff();
+}
+
+// A bound on |L|² over a step of dt_s: |L|² for a free body; under a load,
+// (|L| + dt τ_max)² <= 2 |L|² + 2 (dt τ_max)², which spares the root.
+inline double MomentumReachSq(const BodyState& state, const HeldLoads* load, double dt_s) {
+  const double momentum_sq = state.angular_momentum.squaredNorm();
+  if (load == nullptr) return momentum_sq;
+  const double kick = dt_s * load->TorqueBound();
+  return 2.0 * (momentum_sq + kick * kick);
+}
+
+// Whether turn_per_momentum · √reach_sq <= max_angle_rad, squared to spare
+// the root; false for a NaN.
+inline bool TurnWithin(double turn_per_momentum, double reach_sq, double max_angle_rad) {
+  return turn_per_momentum * turn_per_momentum * reach_sq <= max_angle_rad * max_angle_rad;
+}
+
+// The |L|² below which a free body of `model` needs no substep at dt_s (the
+// cheap bound of PlanStep, once per body): inf for a point mass.
+inline double OneStepMomentumSq(const BodyModel& model, double dt_s) {
+  const double reach = kMaxSubstepAngle / TurnPerMomentum(model, dt_s, kRateBoundFactor);
+  return reach * reach;
+}
+
+// Whether a free body may take the free lanes: dt·|L|·max_k(1/λ_k) <=
+// kSeriesMaxAngle, so that every half-angle of its step is within the series'
+// range (no sub-step of the schemes' compositions is longer than 2 dt, and
+// each turns by at most half its length times |L|·max_k(1/λ_k)).
+inline bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double dt_s) {
+  return TurnWithin(TurnPerMomentum(model, dt_s), state.angular_momentum.squaredNorm(),
+                    kSeriesMaxAngle);
+}
+
+// Whether a loaded body may take the loaded lanes: every half-angle of its
+// step, with L grown by the kick, within the series' range.
+inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, const HeldLoads& load,
+                            double dt_s) {
+  return TurnWithin(TurnPerMomentum(model, dt_s, kLanesLongestSubstep),
+                    MomentumReachSq(state, &load, dt_s), kSeriesMaxAngle);
+}
+
+// Whether a damped body may take the loaded lanes: c·dt <= kLanesMaxDecay for
+// both rates. The backward inner sub-step then lengthens the rescaled time of
+// its rotation by at most e^{1.71/16} < 1.12 and the kicks' growth by less,
+// well within FitsLoadedLanes' margin (its 1.36 dt against the half-angles'
+// 0.85 dt).
+inline bool DampingFitsLoadedLanes(const Damping& damping, double dt_s) {
+  return std::max(damping.linear_per_s, damping.angular_per_s) * dt_s <= kLanesMaxDecay;
+}
+
+// How many substeps of dt/n a body needs from `state` (`load` null for a free
+// body) past the cheap bound: the least n with dt/n · rate <= kMaxSubstepAngle
+// for the scheme's rotation error rate and the load's turn rate, at the start
+// of the step and after its kick; 0 if that is more than max_substeps (or a
+// rate is NaN).
+std::uint32_t SubstepsByRates(const Integrator& integrator, const BodyModel& model,
+                              const BodyState& state, const HeldLoads* load, double dt_s,
+                              std::uint32_t max_substeps);
+
+// The same, with the cheap bound first: 1 when no rate can exceed it.
+inline std::uint32_t SubstepsFor(const Integrator& integrator, const BodyModel& model,
+                                 const BodyState& state, const HeldLoads* load, double dt_s,
+                                 std::uint32_t max_substeps) {
+  const double turn = TurnPerMomentum(model, dt_s, kRateBoundFactor);
+  const bool within =
+      load != nullptr
+          ? turn * (state.angular_momentum.norm() + dt_s * load->TorqueBound()) <= kMaxSubstepAngle
+          : TurnWithin(turn, state.angular_momentum.squaredNorm(), kMaxSubstepAngle);
+  if (within) return 1;
+  return SubstepsByRates(integrator, model, state, load, dt_s, max_substeps);
+}
+
+// A body's step.
+enum class StepClass : std::uint8_t {
+  kAtRest,    // unloaded and still: nothing can move it, the scheme is skipped
+  kFrozen,    // needs more than max_substeps (or its state is NaN)
+  kBatched,   // one step, full rank: handed to the scheme with others
+  kSubsteps,  // `substeps` steps of dt/n (or a rank-deficient body's one)
+};
+struct StepPlan {
+  StepClass step_class;
+  std::uint32_t substeps;  // 1 for kBatched, n for kSubsteps
+};
+
+// The plan of a body's step. `one_step_momentum_sq` is OneStepMomentumSq of
+// its model, kept per body so that the common case costs one compare.
+inline StepPlan PlanStep(const Integrator& integrator, const BodyModel& model,
+                         const BodyState& state, const HeldLoads* load, double one_step_momentum_sq,
+                         double dt_s, std::uint32_t max_substeps) {
+  if (load == nullptr && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
+    return {StepClass::kAtRest, 0};
+  }
+  const std::uint32_t substeps =
+      MomentumReachSq(state, load, dt_s) <= one_step_momentum_sq
+          ? 1
+          : SubstepsFor(integrator, model, state, load, dt_s, max_substeps);
+  if (substeps == 0) return {StepClass::kFrozen, 0};
+  if (substeps == 1 && model.is_full_rank()) return {StepClass::kBatched, 1};
+  return {StepClass::kSubsteps, substeps};
+}
+
+}  // namespace rigid_body_sim::core

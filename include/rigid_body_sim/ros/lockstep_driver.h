@@ -1,0 +1,83 @@
+// Lockstep's part of the loop (doc/node.md, "Lockstep"), with ~lockstep only:
+// at start, the wait for every listed controller and for the first publish
+// cycle; after each published cycle, the gate the loop does not step past
+// until the controllers have answered or the timeout has passed; and the
+// answers on ~lockstep_wrenches, sorted by LockstepGate. Its warnings are
+// throttled to one a second. Stepping thread only.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <rigid_body_sim/ParticleWrench.h>
+#include <rigid_body_sim/StampedParticleWrenchArray.h>
+#include <ros/ros.h>
+
+#include "rigid_body_sim/ros/lockstep_gate.h"
+#include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/scene_params.h"
+#include "rigid_body_sim/ros/state_publisher.h"
+#include "rigid_body_sim/ros/step_lattice.h"
+#include "rigid_body_sim/ros/wrench_intake.h"
+
+namespace rigid_body_sim {
+
+class LockstepDriver {
+ public:
+  using Clock = LockstepGate::Clock;
+  // Where an answer's entries go: held as those of ~particle_wrenches.
+  using TakeEntries = std::function<void(const std::vector<ParticleWrench>&)>;
+
+  // Subscribes to ~lockstep_wrenches: an answer stamped after the last
+  // published cycle is rejected through `intake` (counted, warned), any
+  // other answer's entries go to `take_entries`. `intake` must outlive it.
+  LockstepDriver(const ros::NodeHandle& private_nh, const NodeSettings& settings,
+                 WrenchIntake* intake, TakeEntries take_entries);
+  // The subscription calls this object: it stays where it was made.
+  LockstepDriver(const LockstepDriver&) = delete;
+  LockstepDriver& operator=(const LockstepDriver&) = delete;
+
+  // The start's wait: until every listed controller publishes on
+  // ~lockstep_wrenches and subscribes to `publisher`'s ~bodies, or
+  // ~lockstep_startup_timeout (then counted as a timeout, with a warning).
+  // Serves the global callback queue meanwhile.
+  void WaitForControllers(const StatePublisher& publisher);
+  // K0 under lockstep: `first_index` moved up to the next publish cycle, once
+  // the clock reaches it, so that every run meets its controllers at the same
+  // step counts.
+  std::int64_t WaitForFirstCycle(const StepLattice& lattice, std::int64_t first_index) const;
+
+  // The cycle stamped `stamp` was published at `now`: the loop waits at it.
+  void OpenCycle(const ros::Time& stamp, Clock::time_point now) { gate_.Open(stamp, now); }
+  // Whether the loop waits at a published cycle, and until when at most.
+  bool waiting() const { return gate_.open(); }
+  Clock::time_point deadline() const { return gate_.deadline(); }
+  // Leaves the cycle waited at once every controller has answered or its
+  // timeout has passed (with a warning and a count); whether it left it now.
+  bool PassGate(Clock::time_point now);
+  // Resumed from a pause: the timeout of the cycle waited at counts from `now`.
+  void Resume(Clock::time_point now);
+  // ~step leaves the cycle waited at without its answers: they come late.
+  void LeaveCycle();
+
+  // "a, b": the listed controllers.
+  std::string publisher_list() const;
+  // The counts for diagnostics.
+  const LockstepGate& gate() const { return gate_; }
+
+ private:
+  void OnLockstepAnswer(const ros::MessageEvent<const StampedParticleWrenchArray>& event);
+
+  ros::NodeHandle private_nh_;
+  const LockstepSettings settings_;
+  const double rate_hz_;
+  LockstepGate gate_;
+  LogThrottle warnings_{1.0};  // one lockstep warning a second at most
+  WrenchIntake& intake_;
+  const TakeEntries take_entries_;
+  ros::Subscriber answers_;  // last: its callback uses everything above
+};
+
+}  // namespace rigid_body_sim

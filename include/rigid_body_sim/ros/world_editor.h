@@ -1,0 +1,57 @@
+// Every change the services and subscriptions make to the world between two
+// steps (ServiceFront), made here: each change of states or wrenches is told,
+// as a WorldEvent, to the one event sink (NodeDiagnostics), so that no
+// handler can forget it. A body added or removed reaches every part that
+// keeps per-body state through the world itself (core::BodyListener).
+//
+// Stepping thread only, except body_count().
+#pragma once
+
+#include <atomic>
+#include <cstddef>
+#include <functional>
+
+#include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/scene_params.h"
+#include "rigid_body_sim/ros/world_event.h"
+
+namespace rigid_body_sim {
+
+class WorldEditor {
+ public:
+  using EventSink = std::function<void(const WorldEvent&)>;
+
+  // `world` must outlive it.
+  WorldEditor(core::World* world, EventSink on_event);
+
+  const core::World& world() const { return world_; }
+  // The world's body count, for the request lane's thread.
+  std::size_t body_count() const { return body_count_; }
+
+  // Wrenches already checked (WrenchIntake, JobFromRequest).
+  void HoldWrench(const core::ParticleWrench& wrench);
+  void HoldBodyWrench(const core::BodyWrench& wrench);
+  // The world's refusal for its limits, or kNone with the job added.
+  core::JobRefusal AddWrenchJob(const core::WrenchJob& job);
+  void ClearWrenches();
+  void ClearBodyWrenches(core::BodyId body);
+  // A state already checked (StateFromRequest, World::SubstepsFor).
+  void SetBodyState(core::BodyId body, const core::BodyState& state);
+  void Reset();
+
+  // The one body of `entry` appended to the world (and so to every part that
+  // listens to it); returns its index. Throws what the world throws for a
+  // body it refuses, before anything has changed.
+  std::size_t AddBody(SceneBodies entry);
+  void RemoveBody(core::BodyId body);
+
+ private:
+  void Notify(WorldEvent::Kind kind, core::BodyId body = {}) { on_event_(WorldEvent{kind, body}); }
+
+  core::World& world_;
+  const EventSink on_event_;
+  // Written on the stepping thread after each add or remove.
+  std::atomic<std::size_t> body_count_;
+};
+
+}  // namespace rigid_body_sim

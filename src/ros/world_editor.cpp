@@ -1,0 +1,58 @@
+#include "rigid_body_sim/ros/world_editor.h"
+
+#include <string>
+#include <utility>
+
+namespace rigid_body_sim {
+
+WorldEditor::WorldEditor(core::World* world, EventSink on_event)
+    : world_(*world), on_event_(std::move(on_event)), body_count_(world->size()) {}
+
+void WorldEditor::HoldWrench(const core::ParticleWrench& wrench) {
+  world_.HoldWrench(wrench);
+  Notify(WorldEvent::Kind::kWrenchHeld, wrench.body);
+}
+
+void WorldEditor::HoldBodyWrench(const core::BodyWrench& wrench) {
+  world_.HoldBodyWrench(wrench);
+  Notify(WorldEvent::Kind::kWrenchHeld, wrench.body);
+}
+
+core::JobRefusal WorldEditor::AddWrenchJob(const core::WrenchJob& job) {
+  const core::JobRefusal refusal = world_.AddWrenchJob(job);
+  if (refusal == core::JobRefusal::kNone) Notify(WorldEvent::Kind::kWrenchHeld, job.body);
+  return refusal;
+}
+
+void WorldEditor::ClearWrenches() {
+  world_.ClearWrenches();
+  Notify(WorldEvent::Kind::kWrenchesCleared);
+}
+
+void WorldEditor::ClearBodyWrenches(core::BodyId body) {
+  world_.ClearBodyWrenches(body);
+  Notify(WorldEvent::Kind::kBodyWrenchesCleared, body);
+}
+
+void WorldEditor::SetBodyState(core::BodyId body, const core::BodyState& state) {
+  world_.SetBodyState(body, state);
+  Notify(WorldEvent::Kind::kBodyStateSet, body);
+}
+
+void WorldEditor::Reset() {
+  world_.Reset();
+  Notify(WorldEvent::Kind::kReset);
+}
+
+std::size_t WorldEditor::AddBody(SceneBodies entry) {
+  world_.AddBody(std::move(entry.models[0]), entry.initial_states[0], entry.properties[0]);
+  body_count_ = world_.size();
+  return world_.size() - 1;
+}
+
+void WorldEditor::RemoveBody(core::BodyId body) {
+  world_.RemoveBody(body);
+  body_count_ = world_.size();
+}
+
+}  // namespace rigid_body_sim
