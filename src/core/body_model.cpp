@@ -21,6 +21,17 @@ Eigen::Matrix3d CrossSquared(const Eigen::Vector3d& r) {
   throw std::invalid_argument(message.str());
 }
 
+// An inertial body's field (mass, com, inertia) and its problem.
+[[noreturn]] void RejectField(const std::string& body, const std::string& what) {
+  throw std::invalid_argument("body '" + body + "': " + what);
+}
+
+std::string Moments(const Eigen::Vector3d& moments) {
+  std::ostringstream text;
+  text << "(" << moments[0] << ", " << moments[1] << ", " << moments[2] << ")";
+  return text.str();
+}
+
 }  // namespace
 
 BodyModel::BodyModel(std::string name, std::vector<Particle> particles) {
@@ -63,13 +74,6 @@ BodyModel::BodyModel(std::string name, std::vector<Particle> particles) {
                                 "': total mass, centre of mass or inertia overflows (not finite)");
   }
 
-  // Principal frame: eigenvectors as the columns of a proper rotation R_BP.
-  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(d.inertia);
-  Eigen::Matrix3d axes = solver.eigenvectors();
-  if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
-  principal_axes_ = Eigen::Quaterniond(axes).normalized();
-  d.principal_moments = solver.eigenvalues();
-
   // A moment is null when it is round-off: below kNullMomentRatio of the
   // largest (the eigensolver's precision), or below kRoundOffMomentRatio of
   // Σ m_i |x̄_i|², the size of what the offsets r̄_i = x̄_i − x̄_CM are
@@ -79,8 +83,73 @@ BodyModel::BodyModel(std::string name, std::vector<Particle> particles) {
   for (const Particle& particle : particles) {
     reference_moment += particle.mass_kg * particle.position_m.squaredNorm();
   }
-  const double round_off_moment =
-      std::isfinite(reference_moment) ? kRoundOffMomentRatio * reference_moment : 0.0;
+  DerivePrincipalFrame(
+      &d, std::isfinite(reference_moment) ? kRoundOffMomentRatio * reference_moment : 0.0);
+  details_ = std::move(details);
+}
+
+BodyModel::BodyModel(std::string name, double mass_kg, const Eigen::Vector3d& reference_com_m,
+                     const Eigen::Matrix3d& inertia_kgm2) {
+  auto details = std::make_shared<Details>();
+  Details& d = *details;
+  d.name = std::move(name);
+  if (!std::isfinite(mass_kg) || mass_kg <= 0.0) {
+    std::ostringstream got;
+    got << mass_kg;
+    RejectField(d.name, "mass must be finite and > 0, got " + got.str());
+  }
+  if (!reference_com_m.allFinite()) RejectField(d.name, "com must be 3 finite numbers");
+  if (!inertia_kgm2.allFinite()) RejectField(d.name, "inertia must be 9 finite numbers");
+  const double largest_entry = inertia_kgm2.cwiseAbs().maxCoeff();
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i + 1; j < 3; ++j) {
+      if (std::abs(inertia_kgm2(i, j) - inertia_kgm2(j, i)) > kSymmetryRatio * largest_entry) {
+        std::ostringstream got;
+        got << "inertia must be symmetric, got (" << i << ", " << j << ") = " << inertia_kgm2(i, j)
+            << " and (" << j << ", " << i << ") = " << inertia_kgm2(j, i);
+        RejectField(d.name, got.str());
+      }
+    }
+  }
+  mass_kg_ = mass_kg;
+  d.reference_com_m = reference_com_m;
+  // ½ (Ī + Īᵀ) without forming a sum that could overflow; a symmetric Ī is
+  // kept bit for bit.
+  d.inertia = inertia_kgm2;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i + 1; j < 3; ++j) {
+      d.inertia(i, j) += 0.5 * (inertia_kgm2(j, i) - inertia_kgm2(i, j));
+      d.inertia(j, i) = d.inertia(i, j);
+    }
+  }
+
+  // No offsets to round: only the eigensolver's precision makes a moment null.
+  const Eigen::Vector3d moments = DerivePrincipalFrame(&d, 0.0);
+  const double largest = moments.cwiseAbs().maxCoeff();
+  if (moments.minCoeff() < -kNullMomentRatio * largest) {
+    RejectField(d.name, "inertia must be positive semi-definite, got principal moments " +
+                            Moments(moments));
+  }
+  for (int k = 0; k < 3; ++k) {
+    if (moments.sum() - 2.0 * moments[k] < -kTriangleRatio * largest) {
+      RejectField(d.name,
+                  "inertia must obey the triangle inequality (no principal moment above the sum "
+                  "of the other two), got principal moments " +
+                      Moments(moments));
+    }
+  }
+  details_ = std::move(details);
+}
+
+Eigen::Vector3d BodyModel::DerivePrincipalFrame(Details* details, double round_off_moment) {
+  Details& d = *details;
+  // Principal frame: eigenvectors as the columns of a proper rotation R_BP.
+  const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> solver(d.inertia);
+  Eigen::Matrix3d axes = solver.eigenvectors();
+  if (axes.determinant() < 0.0) axes.col(2) = -axes.col(2);
+  principal_axes_ = Eigen::Quaterniond(axes).normalized();
+  d.principal_moments = solver.eigenvalues();
+
   const double null_below =
       std::max(kNullMomentRatio * d.principal_moments.maxCoeff(), round_off_moment);
   Eigen::Vector3d in_range = Eigen::Vector3d::Zero();
@@ -100,7 +169,7 @@ BodyModel::BodyModel(std::string name, std::vector<Particle> particles) {
   d.range_projector = rotation * in_range.asDiagonal() * rotation.transpose();
   isotropic_ = rank_ == 3 &&
                d.principal_moments[2] - d.principal_moments[0] <= 1e-12 * d.principal_moments[2];
-  details_ = std::move(details);
+  return solver.eigenvalues();
 }
 
 }  // namespace rigid_body_sim::core

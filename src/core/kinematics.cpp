@@ -24,6 +24,10 @@ void ParticlePositions(const BodyModel& model, const BodyState& state,
                        std::vector<Eigen::Vector3d>* positions) {
   const Eigen::Matrix3d R_WB = state.orientation.toRotationMatrix();
   const std::vector<Eigen::Vector3d>& offsets = model.particle_offsets();
+  if (offsets.empty()) {  // an inertial body: its COM
+    positions->assign(1, state.position);
+    return;
+  }
   positions->resize(offsets.size());
   for (std::size_t i = 0; i < offsets.size(); ++i) {
     (*positions)[i] = state.position + R_WB * offsets[i];
@@ -36,6 +40,10 @@ void ParticleVelocities(const BodyModel& model, const BodyState& state,
   const Eigen::Vector3d velocity = LinearVelocity(model, state);
   const Eigen::Vector3d omega = AngularVelocity(model, state);
   const std::vector<Eigen::Vector3d>& offsets = model.particle_offsets();
+  if (offsets.empty()) {  // an inertial body: its COM
+    velocities->assign(1, velocity);
+    return;
+  }
   velocities->resize(offsets.size());
   for (std::size_t i = 0; i < offsets.size(); ++i) {
     (*velocities)[i] = velocity + omega.cross(R_WB * offsets[i]);

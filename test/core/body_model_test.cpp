@@ -9,14 +9,14 @@
 namespace rigid_body_sim::core {
 namespace {
 
-TEST(BodyModel, BoxOfParticlesHasTheDiscreteBoxInertia) {
-  // n equal cells per edge: Σ x² over cell centres is M a²(1 − 1/n²)/12, the
-  // continuous box's a²/12 less the cells' own share.
+TEST(BodyModel, BoxOfParticlesHasTheSolidBoxInertia) {
+  // n equal cells per edge, moved in from the cell centres so that Σ x² is
+  // the solid's M a²/12 (the centres alone give M a²(1 − 1/n²)/12).
   const double mass = 3.0;
   const Eigen::Vector3d size(0.4, 0.6, 1.0);
   const int n = 5;
   const BodyModel box("box", MakeBox(mass, size, n));
-  const Eigen::Vector3d second = mass * size.cwiseAbs2() * (1.0 - 1.0 / (n * n)) / 12.0;
+  const Eigen::Vector3d second = mass * size.cwiseAbs2() / 12.0;
   const Eigen::Vector3d expected(second.y() + second.z(), second.x() + second.z(),
                                  second.x() + second.y());
   EXPECT_NEAR(box.mass(), mass, 1e-14);

@@ -1,5 +1,6 @@
 // The constant part of a rigid body: mass properties computed once from its
-// point particles (lecture: "pre-computation"). Immutable after construction.
+// point particles (lecture: "pre-computation"), or given as a mass, a centre of
+// mass and an inertia tensor. Immutable after construction.
 #pragma once
 
 #include <memory>
@@ -27,18 +28,42 @@ struct Particle {
 // (offsets that are round-off of x̄_CM), is treated as zero, and its inverse
 // as zero, which is exact because particle forces make no torque about that
 // axis.
+//
+// A body given by its mass, COM and Ī instead (an inertial body) has no
+// particles: particle_count() is 0, and forces act on it at its COM or at a
+// point. Its Ī is kept as given; the principal frame, the null moments (the
+// same kNullMomentRatio rule), the pseudo-inverse, the range projector, the
+// rank and the isotropy come from the same code as a particle body's.
 class BodyModel {
  public:
   static constexpr double kNullMomentRatio = 1e-12;
   static constexpr double kRoundOffMomentRatio = 1e-24;
+  // A given Ī may differ from its transpose by this much of its largest
+  // entry (round-off of R Ī Rᵀ); it is kept as ½ (Ī + Īᵀ).
+  static constexpr double kSymmetryRatio = 1e-12;
+  // Each principal moment of a given Ī may exceed the sum of the other two
+  // by this much of the largest.
+  static constexpr double kTriangleRatio = 1e-9;
 
   // Throws std::invalid_argument naming the body, the particle index and the
   // problem: no particles, a mass <= 0 or not finite, a position not finite.
   BodyModel(std::string name, std::vector<Particle> particles);
 
+  // An inertial body: mass M [kg], x̄_CM in reference coordinates [m] and Ī
+  // about the COM in body (reference) axes [kg m²]. Throws
+  // std::invalid_argument naming the body, the field (mass, com, inertia) and
+  // the problem: a mass <= 0 or not finite, a COM or Ī not finite, Ī not
+  // symmetric (kSymmetryRatio), a principal moment below −kNullMomentRatio ·
+  // λ_max (not positive semi-definite), or one exceeding the sum of the other
+  // two (kTriangleRatio). Zero moments are legal: Ī = 0 is a point mass, one
+  // zero moment a rod.
+  BodyModel(std::string name, double mass_kg, const Eigen::Vector3d& reference_com_m,
+            const Eigen::Matrix3d& inertia_kgm2);
+
   const std::string& name() const { return details_->name; }
   double mass() const { return mass_kg_; }
   double inverse_mass() const { return 1.0 / mass_kg_; }
+  // 0 for an inertial body.
   std::size_t particle_count() const { return details_->masses_kg.size(); }
   const std::vector<double>& particle_masses() const { return details_->masses_kg; }
   // x̄_CM, reference coordinates [m].
@@ -85,6 +110,13 @@ class BodyModel {
     Eigen::Matrix3d range_projector;
   };
   std::shared_ptr<const Details> details_;
+
+  // Everything derived from d->inertia, for both constructors: the principal
+  // frame, the null moments (below kNullMomentRatio · λ_max or
+  // round_off_moment) set to 0, their inverses, Ī⁺, the range projector, the
+  // rank and the isotropy. Returns the principal moments as the eigensolver
+  // gave them, before null ones are set to 0.
+  Eigen::Vector3d DerivePrincipalFrame(Details* d, double round_off_moment);
 };
 
 }  // namespace rigid_body_sim::core

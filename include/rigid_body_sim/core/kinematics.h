@@ -29,11 +29,13 @@ Eigen::Matrix3d WorldInertia(const BodyModel& model, const BodyState& state);
 // p·p / 2M + L·ω / 2 [J].
 double KineticEnergy(const BodyModel& model, const BodyState& state);
 
-// x_i for every particle, world [m]; `positions` is resized.
+// x_i for every particle, world [m]; `positions` is resized. A body without
+// particles (an inertial body) has one point, its COM x_CM.
 void ParticlePositions(const BodyModel& model, const BodyState& state,
                        std::vector<Eigen::Vector3d>* positions);
 
-// v_i = v + ω × (x_i − x_CM), world [m/s]; `velocities` is resized.
+// v_i = v + ω × (x_i − x_CM), world [m/s]; `velocities` is resized. A body
+// without particles has one point, its COM, moving at v.
 void ParticleVelocities(const BodyModel& model, const BodyState& state,
                         std::vector<Eigen::Vector3d>* velocities);
 
