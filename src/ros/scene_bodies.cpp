@@ -54,9 +54,10 @@ std::vector<core::Particle> ReadParticles(const XmlRpcValue& list) {
 int ReadResolution(const XmlRpcValue& body) {
   if (!body.hasMember("resolution")) return kDefaultShapeResolution;
   const XmlRpcValue& value = body["resolution"];
-  if (value.getType() != XmlRpcValue::TypeInt || static_cast<int>(value) < 1 ||
+  // One particle has no inertia to scale to the solid's (core/shapes.h).
+  if (value.getType() != XmlRpcValue::TypeInt || static_cast<int>(value) < 2 ||
       static_cast<int>(value) > kMaxShapeResolution) {
-    throw SceneError("resolution must be an integer from 1 to " +
+    throw SceneError("resolution must be an integer from 2 to " +
                      std::to_string(kMaxShapeResolution) + ", got " + Describe(value));
   }
   return static_cast<int>(value);

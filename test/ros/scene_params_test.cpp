@@ -106,6 +106,18 @@ TEST(SceneParams, ErrorsNameTheEntryAndTheKey) {
   EXPECT_NE(ErrorOf(XmlRpcValue()).find("~bodies must be a non-empty list"), std::string::npos);
 }
 
+TEST(SceneParams, AShapeOfResolutionOneIsRefused) {
+  // One particle has no inertia: no scaling gives it the solid's.
+  XmlRpcValue box;
+  box["name"] = "dot";
+  box["shape"] = "box";
+  box["mass"] = 1.0;
+  box["size"] = Vector(0.1, 0.1, 0.1);
+  box["resolution"] = 1;
+  EXPECT_EQ(ErrorOf(List({box})),
+            "bodies[0] (name 'dot'): resolution must be an integer from 2 to 40, got 1");
+}
+
 TEST(SceneParams, GravityScaleAndDampingAreReadAndChecked) {
   XmlRpcValue floating = Dumbbell("floating");
   floating["gravity_scale"] = 0;
