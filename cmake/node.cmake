@@ -6,6 +6,11 @@ include_directories(include ${catkin_INCLUDE_DIRS})
 find_package(yaml-cpp REQUIRED)
 find_package(PkgConfig REQUIRED)
 pkg_check_modules(LIBYAML REQUIRED yaml-0.1)
+# Bodies from URDF: ROS's urdf parser (urdfdom underneath) reads the XML, and
+# roslib's ros::package resolves package:// paths. Only src/ros/urdf_body.cpp
+# includes them: no installed header does, so they are not exported.
+find_package(urdf REQUIRED)
+find_package(roslib REQUIRED)
 
 add_library(rigid_body_sim_ros
   src/ros/param_values.cpp
@@ -19,6 +24,7 @@ add_library(rigid_body_sim_ros
   src/ros/body_state_request.cpp
   src/ros/wrench_job_request.cpp
   src/ros/yaml_value.cpp
+  src/ros/urdf_body.cpp
   src/ros/body_topics.cpp
   src/ros/log_thread.cpp
   src/ros/state_publisher.cpp
@@ -36,9 +42,10 @@ add_library(rigid_body_sim_ros
   src/ros/simulation_node.cpp)
 # The ROS headers come from include_directories() above here and from
 # catkin_package() for dependent packages: no absolute path in the interface.
-target_include_directories(rigid_body_sim_ros PUBLIC include PRIVATE ${catkin_INCLUDE_DIRS})
+target_include_directories(rigid_body_sim_ros PUBLIC include PRIVATE ${catkin_INCLUDE_DIRS}
+  ${urdf_INCLUDE_DIRS} ${roslib_INCLUDE_DIRS})
 target_link_libraries(rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES}
-  ${LIBYAML_LIBRARIES})
+  ${LIBYAML_LIBRARIES} ${urdf_LIBRARIES} ${roslib_LIBRARIES})
 add_dependencies(rigid_body_sim_ros
   ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 

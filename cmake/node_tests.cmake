@@ -49,13 +49,16 @@ add_rostest(test/ros/client.test DEPENDENCIES rigid_body_sim_node)
 
 # The node's pieces that need no master: message conversions and the per-body
 # outputs, the wrench and request checks, the scene and IMU noise parsers, the
-# runtime configuration's checks.
+# runtime configuration's checks, the bodies read from URDF.
 catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_intake_test.cpp
   test/ros/body_state_request_test.cpp test/ros/scene_params_test.cpp
   test/ros/runtime_config_test.cpp test/ros/body_outputs_test.cpp
   test/ros/imu_noise_params_test.cpp test/ros/wrench_job_request_test.cpp
   test/ros/yaml_value_test.cpp test/ros/lockstep_gate_test.cpp
-  test/ros/state_hash_worker_test.cpp)
+  test/ros/state_hash_worker_test.cpp test/ros/urdf_body_test.cpp)
+# urdf_body_test reads config/quadrotor.urdf from the source tree.
+target_compile_definitions(ros_units_test PRIVATE
+  RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 target_include_directories(ros_units_test PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(ros_units_test rigid_body_sim_ros gtest_main)
 add_dependencies(ros_units_test ${${PROJECT_NAME}_EXPORTED_TARGETS})
