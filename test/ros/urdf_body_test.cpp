@@ -308,6 +308,23 @@ TEST(UrdfSource, FilesAreAbsoluteOrInAPackage) {
   EXPECT_NE(TextErrorOf(source, no_params).find("package://PACKAGE/PATH"), std::string::npos);
 }
 
+// With the workspace's environment (devel/setup.bash), ROS knows this package.
+TEST(UrdfSource, APackageUrlResolvesThroughRosPackage) {
+  std::string path;
+  try {
+    path = ResolveUrdfPath("package://rigid_body_sim/config/quadrotor.urdf");
+  } catch (const SceneError& error) {
+    GTEST_SKIP() << "ROS_PACKAGE_PATH has no rigid_body_sim: " << error.what();
+  }
+  EXPECT_EQ(path.front(), '/');
+  EXPECT_EQ(path.substr(path.size() - std::string("/config/quadrotor.urdf").size()),
+            "/config/quadrotor.urdf");
+  UrdfSource source;
+  source.kind = UrdfSource::Kind::kFile;
+  source.value = "package://rigid_body_sim/config/quadrotor.urdf";
+  EXPECT_EQ(ParseUrdfBody(UrdfText(source)).root_link, "base_link");
+}
+
 // ---- config/quadrotor.urdf ---------------------------------------------------
 
 TEST(UrdfBody, TheQuadrotorIsOneBodyOfOneAndAHalfKilograms) {

@@ -1,4 +1,4 @@
-// One rigid body from a URDF (doc/SPEC "Bodies from URDF"): the root link and
+// One rigid body from a URDF (a scene body's `urdf` key): the root link and
 // every link below it, each joint held at position 0, merged into one mass, COM
 // and Ī; the links become sites, the non-fixed joints are what ~joint_states
 // names. The XML is parsed by ROS's urdf library; the inertia math is
