@@ -43,17 +43,20 @@ rbs_source_devel() {
 }
 
 # Prints the C++ files of src/ and include/ (relative to the checkout, one a
-# line) that differ from the merge-base of HEAD and origin/main (else main),
-# committed or not, and the new untracked ones; prints nothing when there is
-# no such base. format_check.sh --changed and tidy_check.sh use it.
+# line) that differ from REV ($1; default: the merge-base of HEAD and
+# origin/main, else main), committed or not, and the new untracked ones;
+# prints nothing when there is no such base. format_check.sh --changed and
+# tidy_check.sh use it.
 rbs_changed_cxx() {
-  local ref base=""
-  for ref in origin/main main; do
-    if git -C "$repo" rev-parse --verify -q "$ref^{commit}" >/dev/null; then
-      base="$(git -C "$repo" merge-base HEAD "$ref")"
-      break
-    fi
-  done
+  local ref base="${1:-}"
+  if [ -z "$base" ]; then
+    for ref in origin/main main; do
+      if git -C "$repo" rev-parse --verify -q "$ref^{commit}" >/dev/null; then
+        base="$(git -C "$repo" merge-base HEAD "$ref")"
+        break
+      fi
+    done
+  fi
   [ -n "$base" ] || return 0
   {
     git -C "$repo" diff --name-only --diff-filter=ACMR "$base" -- src include

@@ -1,7 +1,7 @@
 #!/bin/bash
 # The one test command: installs what is missing, checks the C++ formatting
 # (scripts/format_check.sh), builds, runs clang-tidy on the C++ changed since
-# main (scripts/tidy_check.sh; every source when nothing has changed), runs
+# main (scripts/tidy_check.sh; on main, what the last commit changed), runs
 # every test (gtest for the core, rostest for the node, the Python 3.8 /
 # C++17 check, then the install space's test) and exits non-zero on any
 # failure.
