@@ -24,6 +24,7 @@ add_library(rigid_body_sim_ros
   src/ros/body_state_request.cpp
   src/ros/wrench_job_request.cpp
   src/ros/yaml_value.cpp
+  src/ros/yaml_sizing.cpp
   src/ros/urdf_body.cpp
   src/ros/body_topics.cpp
   src/ros/log_thread.cpp

@@ -62,3 +62,11 @@ target_compile_definitions(ros_units_test PRIVATE
 target_include_directories(ros_units_test PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(ros_units_test rigid_body_sim_ros gtest_main)
 add_dependencies(ros_units_test ${${PROJECT_NAME}_EXPORTED_TARGETS})
+
+# The wire interface: the md5sums of the messages and services and the
+# reconfigure parameters against test/ros/interface_md5.yaml.
+catkin_add_gtest(interface_md5_test test/ros/interface_md5_test.cpp)
+target_include_directories(interface_md5_test PRIVATE ${catkin_INCLUDE_DIRS})
+target_link_libraries(interface_md5_test ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES} gtest_main)
+target_compile_definitions(interface_md5_test PRIVATE RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
+add_dependencies(interface_md5_test ${${PROJECT_NAME}_EXPORTED_TARGETS})

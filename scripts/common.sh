@@ -18,6 +18,7 @@ export PATH="/usr/bin:$PATH"
 
 # Creates $ws with the checkout linked into its src/, then runs catkin_make
 # there with ROS's Python and the given arguments; leaves the shell in $ws.
+# The build writes build/compile_commands.json (scripts/tidy_check.sh).
 rbs_catkin_make() {
   if ! command -v catkin_make >/dev/null; then
     echo "catkin_make not found: install the dependencies first (bash scripts/install_deps.sh)" >&2
@@ -30,7 +31,7 @@ rbs_catkin_make() {
   fi
   [ -e "$ws/src/rigid_body_sim" ] || ln -s "$repo" "$ws/src/rigid_body_sim"
   cd "$ws" || return 1
-  catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 "$@"
+  catkin_make -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_EXPORT_COMPILE_COMMANDS=ON "$@"
 }
 
 # Sources the workspace's devel/setup.bash (which reads unset variables).
@@ -39,4 +40,28 @@ rbs_source_devel() {
   # shellcheck source=/dev/null
   source "$ws/devel/setup.bash"
   set -u
+}
+
+# Prints the C++ files of src/ and include/ (relative to the checkout, one a
+# line) that differ from REV ($1; default: the merge-base of HEAD and
+# origin/main, else main), committed or not, and the new untracked ones;
+# prints nothing when there is no such base. format_check.sh --changed and
+# tidy_check.sh use it.
+rbs_changed_cxx() {
+  local ref base="${1:-}"
+  if [ -z "$base" ]; then
+    for ref in origin/main main; do
+      if git -C "$repo" rev-parse --verify -q "$ref^{commit}" >/dev/null; then
+        base="$(git -C "$repo" merge-base HEAD "$ref")"
+        break
+      fi
+    done
+  fi
+  [ -n "$base" ] || return 0
+  {
+    git -C "$repo" diff --name-only --diff-filter=ACMR "$base" -- src include
+    git -C "$repo" ls-files --others --exclude-standard -- src include
+  } | sort -u | while IFS= read -r f; do
+    case "$f" in *.cpp | *.h) [ -f "$repo/$f" ] && echo "$f" ;; esac
+  done
 }

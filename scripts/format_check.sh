@@ -2,15 +2,36 @@
 # Holds the C++ of src/ and include/ to .clang-format: lists every file that
 # clang-format would change and exits non-zero if there is one. Run by the
 # test command; `clang-format -i <file>` fixes a file.
+#
+#   bash scripts/format_check.sh             # every file of src/ and include/
+#   bash scripts/format_check.sh --changed   # those changed since main
+#   bash scripts/format_check.sh FILE...     # these files
+#
+# --changed takes the files that differ from the merge-base of HEAD and
+# origin/main (else main), committed or not, and new untracked ones.
 set -euo pipefail
-cd "$(dirname "${BASH_SOURCE[0]}")/.."
+# shellcheck source=scripts/common.sh
+source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
+cd "$repo"
+files=()
+if [ "${1:-}" = "--changed" ]; then
+  mapfile -t files < <(rbs_changed_cxx)
+  if [ ${#files[@]} -eq 0 ]; then
+    echo "format_check: OK (no C++ changed since main)"
+    exit 0
+  fi
+elif [ $# -gt 0 ]; then
+  files=("$@")
+else
+  mapfile -t files < <(find src include -name '*.cpp' -o -name '*.h' | sort)
+fi
 unformatted=()
-while IFS= read -r file; do
+for file in "${files[@]}"; do
   clang-format --dry-run --Werror "$file" >/dev/null 2>&1 || unformatted+=("$file")
-done < <(find src include -name '*.cpp' -o -name '*.h' | sort)
+done
 if [ ${#unformatted[@]} -gt 0 ]; then
   echo "format_check: not as .clang-format says (clang-format -i fixes them):" >&2
   printf '  %s\n' "${unformatted[@]}" >&2
   exit 1
 fi
-echo "format_check: OK"
+echo "format_check: OK (${#files[@]} files)"

@@ -68,14 +68,14 @@ fi
 mapfile -t sources < <(grep -oE 'src/core/[A-Za-z0-9_/]+\.cpp' "$repo/CMakeLists.txt")
 sources+=(src/ros/scene_params.cpp src/ros/scene_settings.cpp src/ros/scene_bodies.cpp
   src/ros/param_values.cpp src/ros/imu_noise_params.cpp src/ros/conversions.cpp src/ros/wrench_intake.cpp
-  src/ros/log_thread.cpp src/ros/body_state_request.cpp src/ros/yaml_value.cpp)
+  src/ros/log_thread.cpp src/ros/body_state_request.cpp src/ros/yaml_value.cpp src/ros/yaml_sizing.cpp)
 export repo out cxx core_flags_text="${core_flags[*]}"
 printf '%s\n' "${sources[@]}" | xargs -P "$jobs" -I{} bash -c '
   src="$1"; shift
   obj="$out/obj/$(echo "$src" | tr / _).o"
   extra=()
   case "$src" in src/core/*) read -r -a extra <<<"$core_flags_text" ;; esac
-  if [ ! -f "$obj" ] || [ "$repo/$src" -nt "$obj" ] || [ -n "$(find "$repo/include" -newer "$obj" -name "*.h" | head -1)" ]; then
+  if [ ! -f "$obj" ] || [ "$repo/$src" -nt "$obj" ] || [ -n "$(find "$repo/include" "$repo/src" -newer "$obj" -name "*.h" | head -1)" ]; then
     "$cxx" "$@" -fsanitize=fuzzer-no-link "${extra[@]}" -c "$repo/$src" -o "$obj"
   fi' _ {} "${cxxflags[@]}"
 objs=()

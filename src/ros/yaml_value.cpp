@@ -1,6 +1,7 @@
+// ~spawn_body's YAML text to XmlRpc values: libyaml's parser, the second pass
+// (the values) and the two passes together; the first is in yaml_sizing.cpp.
 #include "rigid_body_sim/ros/yaml_value.h"
 
-#include <cctype>
 #include <cstdlib>
 #include <map>
 #include <new>
@@ -10,43 +11,18 @@
 #include <yaml.h>
 
 #include "rigid_body_sim/ros/scene_params.h"
+#include "yaml_passes.h"
 
 namespace rigid_body_sim {
 namespace {
 
 using XmlRpc::XmlRpcValue;
-
-// What a value costs once built, as glibc allocates for XmlRpcValue: the
-// 16-byte value itself in its parent, plus what it owns on the heap.
-constexpr std::size_t kSlotBytes = sizeof(XmlRpcValue);
-constexpr std::size_t kStringBytes = 64;      // a new'd std::string, its buffer's header
-constexpr std::size_t kCollectionBytes = 64;  // a new'd std::vector or std::map
-constexpr std::size_t kMapMemberBytes = 80;   // a tree node with its key string
-
-std::string MiB(std::size_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
-
-// Whether a plain scalar certainly becomes a number (so owns no string):
-// digits with a sign, a point and an exponent of at most two digits, short
-// enough that the conversion can neither overflow nor lose the digits.
-bool CertainlyNumber(const std::string& text) {
-  if (text.empty() || text.size() > 32) return false;
-  std::size_t i = (text[0] == '+' || text[0] == '-') ? 1 : 0;
-  std::size_t digits = 0;
-  for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) ++digits;
-  if (i < text.size() && text[i] == '.') {
-    for (++i; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i) ++digits;
-  }
-  if (digits == 0) return false;
-  if (i < text.size() && (text[i] == 'e' || text[i] == 'E')) {
-    ++i;
-    if (i < text.size() && (text[i] == '+' || text[i] == '-')) ++i;
-    std::size_t exponent_digits = 0;
-    for (; i < text.size() && std::isdigit(static_cast<unsigned char>(text[i])); ++i)
-      ++exponent_digits;
-    if (exponent_digits == 0 || exponent_digits > 2) return false;
-  }
-  return i == text.size();
-}
+using yaml_passes::CertainlyNumber;
+using yaml_passes::Event;
+using yaml_passes::EventPass;
+using yaml_passes::IsNull;
+using yaml_passes::MiB;
+using yaml_passes::SizingPass;
 
 // A plain decimal integer that fits an int, without a leading zero (which
 // yaml-cpp reads as octal).
@@ -75,157 +51,6 @@ XmlRpcValue FromPlainScalar(const std::string& text) {
   if (YAML::convert<bool>::decode(node, flag)) return XmlRpcValue(flag);
   return XmlRpcValue(text);
 }
-
-// A null as YAML 1.1 writes it (yaml-cpp reads the same plain scalars).
-bool IsNull(const std::string& text) {
-  return text.empty() || text == "~" || text == "null" || text == "Null" || text == "NULL";
-}
-
-// One parsed event, as both passes see it.
-struct Event {
-  yaml_event_type_t type = YAML_NO_EVENT;
-  std::string anchor;  // empty: none; of an alias, the anchor it names
-  bool plain = false;  // a plain (unquoted) scalar
-  std::string value;
-};
-
-// Both passes see the same events; this base keeps what they share: the
-// nesting, whether the next event of a map is a key, and the refusals.
-class EventPass {
- public:
-  virtual ~EventPass() = default;
-
-  void Take(const Event& event) {
-    switch (event.type) {
-      case YAML_SCALAR_EVENT:
-        if (TakesKey()) {
-          Key(event.value);
-        } else {
-          Scalar(event);
-        }
-        break;
-      case YAML_ALIAS_EVENT:
-        if (TakesKey()) has_complex_key_ = true;
-        Alias(event.anchor);
-        break;
-      case YAML_SEQUENCE_START_EVENT:
-      case YAML_MAPPING_START_EVENT: {
-        if (TakesKey()) has_complex_key_ = true;
-        if (static_cast<int>(open_.size()) >= kMaxYamlDepth) {
-          throw SceneError("YAML nested deeper than " + std::to_string(kMaxYamlDepth) +
-                           " (the limit for a service text)");
-        }
-        const bool is_map = event.type == YAML_MAPPING_START_EVENT;
-        Start(is_map, event.anchor);
-        open_.push_back({is_map, true});
-        break;
-      }
-      case YAML_SEQUENCE_END_EVENT:
-      case YAML_MAPPING_END_EVENT:
-        open_.pop_back();
-        End();
-        break;
-      default:
-        break;
-    }
-  }
-  // Whether a map key was not a plain scalar: refused once the whole text
-  // has parsed, so that a malformed text is reported as such.
-  bool has_complex_key() const { return has_complex_key_; }
-
- protected:
-  virtual void Key(const std::string& key) = 0;
-  virtual void Scalar(const Event& event) = 0;
-  virtual void Alias(const std::string& anchor) = 0;
-  virtual void Start(bool is_map, const std::string& anchor) = 0;
-  virtual void End() = 0;
-
-  bool InSequence() const { return !open_.empty() && !open_.back().is_map; }
-
- private:
-  struct Open {
-    bool is_map;
-    bool expects_key;  // maps alternate key, value
-  };
-
-  bool TakesKey() {
-    if (open_.empty() || !open_.back().is_map) return false;
-    const bool key = open_.back().expects_key;
-    open_.back().expects_key = !key;
-    return key;
-  }
-
-  std::vector<Open> open_;
-  bool has_complex_key_ = false;
-};
-
-// First pass: the expanded memory of the values, and the size of every
-// collection in event order, with nothing allocated per value.
-class SizingPass : public EventPass {
- public:
-  const std::vector<std::size_t>& collection_sizes() const { return collection_sizes_; }
-
- private:
-  struct Started {
-    std::size_t bytes_before;
-    std::string anchor;
-  };
-
-  void Key(const std::string& key) override { Charge(kMapMemberBytes + key.size()); }
-  void Scalar(const Event& event) override {
-    const bool owns_nothing = event.plain && (CertainlyNumber(event.value) || IsNull(event.value));
-    Value(owns_nothing ? kSlotBytes : kSlotBytes + kStringBytes + event.value.size(), event.anchor);
-  }
-  void Alias(const std::string& anchor) override {
-    const auto anchored = anchored_bytes_.find(anchor);
-    if (anchored == anchored_bytes_.end()) {
-      throw SceneError("not valid YAML: the alias *" + anchor.substr(0, 64) +
-                       " names no anchor before it");
-    }
-    Value(anchored->second, "");
-  }
-  void Start(bool /*is_map*/, const std::string& anchor) override {
-    CountInCollection();
-    started_.push_back({total_bytes_, anchor});
-    Charge(kSlotBytes + kCollectionBytes);
-    open_collections_.push_back(collection_sizes_.size());
-    collection_sizes_.push_back(0);
-  }
-  void End() override {
-    open_collections_.pop_back();
-    const Started started = started_.back();
-    started_.pop_back();
-    if (!started.anchor.empty()) Anchor(started.anchor, total_bytes_ - started.bytes_before);
-  }
-
-  void Charge(std::size_t bytes) {
-    if (bytes > kMaxYamlValueBytes - total_bytes_) {
-      throw SceneError("the YAML text expands to more than " + MiB(kMaxYamlValueBytes) +
-                       " of values, aliases counted at every use (the limit for a service text)");
-    }
-    total_bytes_ += bytes;
-  }
-  void CountInCollection() {
-    if (InSequence()) ++collection_sizes_[open_collections_.back()];
-  }
-  // A value complete in one event.
-  void Value(std::size_t bytes, const std::string& anchor) {
-    CountInCollection();
-    Charge(bytes);
-    if (!anchor.empty()) Anchor(anchor, bytes);
-  }
-  // An anchored value is kept as a copy for its aliases.
-  void Anchor(const std::string& anchor, std::size_t bytes) {
-    Charge(bytes + kMapMemberBytes + anchor.size());
-    anchored_bytes_[anchor] = bytes;
-  }
-
-  std::size_t total_bytes_ = 0;
-  std::vector<Started> started_;
-  std::vector<std::size_t> open_collections_;  // indices into collection_sizes_
-  std::vector<std::size_t> collection_sizes_;  // every collection's size, in event order
-  std::map<std::string, std::size_t> anchored_bytes_;
-};
 
 // Second pass: the values, each built in its place (XmlRpcValue copies
 // deeply, so nothing is built first and copied in, but for aliases).
