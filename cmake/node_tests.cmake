@@ -46,6 +46,7 @@ add_rostest(test/ros/closed_loop.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/sharded.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/hostile_input.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/client.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/empty_world.test DEPENDENCIES rigid_body_sim_node)
 
 # The node's pieces that need no master: message conversions and the per-body
 # outputs, the wrench and request checks, the scene and IMU noise parsers, the

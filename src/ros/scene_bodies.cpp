@@ -1,10 +1,13 @@
 #include "rigid_body_sim/ros/scene_bodies.h"
 
+#include <algorithm>
 #include <optional>
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
+#include "rigid_body_sim/core/inertia.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/validate.h"
@@ -92,6 +95,65 @@ std::vector<core::Particle> ReadShape(const XmlRpcValue& body, const std::string
   return core::MakeCylinder(mass, radius, ReadRequiredPositive(body, "length"), resolution);
 }
 
+// Refuses a key of `map` (the value at `key`) not among `known`.
+void CheckMapKeys(const XmlRpcValue& map, const std::string& key,
+                  const std::vector<std::string>& known) {
+  for (const auto& member : map) {
+    if (std::find(known.begin(), known.end(), member.first) != known.end()) continue;
+    std::string list;
+    for (const auto& name : known) list += (list.empty() ? "" : ", ") + name;
+    throw SceneError(key + " has unknown key '" + member.first + "' (known: " + list + ")");
+  }
+}
+
+const XmlRpcValue& ReadMap(const XmlRpcValue& value, const std::string& key,
+                           const std::vector<std::string>& known) {
+  if (value.getType() != XmlRpcValue::TypeStruct) {
+    std::string list;
+    for (const auto& name : known) list += (list.empty() ? "" : ", ") + name;
+    throw SceneError(key + " must be a map {" + list + "}, got " + Describe(value));
+  }
+  CheckMapKeys(value, key, known);
+  return value;
+}
+
+// `inertial: {mass, origin: {xyz, rpy}, inertia: {ixx, ..., izz}}`, URDF's
+// names and meaning: the model of mass M, x̄_CM = xyz and Ī = R Ī_origin Rᵀ.
+core::BodyModel ReadInertial(const std::string& name, const XmlRpcValue& value) {
+  const XmlRpcValue& inertial = ReadMap(value, "inertial", {"mass", "origin", "inertia"});
+  if (!inertial.hasMember("mass")) throw SceneError("inertial.mass is missing");
+  const double mass = ReadPositiveNumber(inertial["mass"], "inertial.mass");
+  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
+  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
+  if (inertial.hasMember("origin")) {
+    const XmlRpcValue& origin = ReadMap(inertial["origin"], "inertial.origin", {"xyz", "rpy"});
+    if (origin.hasMember("xyz")) xyz = ReadFiniteVector<3>(origin["xyz"], "inertial.origin.xyz");
+    if (origin.hasMember("rpy")) rpy = ReadFiniteVector<3>(origin["rpy"], "inertial.origin.rpy");
+  }
+  if (!inertial.hasMember("inertia")) throw SceneError("inertial.inertia is missing");
+  const std::vector<std::string> kEntries = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
+  const XmlRpcValue& inertia = ReadMap(inertial["inertia"], "inertial.inertia", kEntries);
+  double numbers[6];
+  for (std::size_t k = 0; k < kEntries.size(); ++k) {
+    const std::string key = "inertial.inertia." + kEntries[k];
+    if (!inertia.hasMember(kEntries[k])) throw SceneError(key + " is missing");
+    numbers[k] = ReadFiniteNumber(inertia[kEntries[k]], key);
+  }
+  const core::InertiaEntries entries{numbers[0], numbers[1], numbers[2],
+                                     numbers[3], numbers[4], numbers[5]};
+  const core::RigidPart part = core::InertialPart(mass, xyz, rpy, entries);
+  try {
+    return core::BodyModel(name, part.mass_kg, part.com_m, part.inertia_kgm2);
+  } catch (const std::invalid_argument& error) {
+    // "body 'n': inertia must be ..." → "inertial.inertia must be ..."; the
+    // caller names the entry.
+    std::string what = error.what();
+    const std::string prefix = "body '" + name + "': ";
+    if (what.compare(0, prefix.size(), prefix) == 0) what = what.substr(prefix.size());
+    throw SceneError("inertial." + what);
+  }
+}
+
 void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) {
   static const std::set<std::string> kCommonKeys = {
       "name",          "position",       "orientation",    "linear_velocity", "angular_velocity",
@@ -143,20 +205,26 @@ core::BodyDef ReadBody(const XmlRpcValue& body) {
   const std::string& name = body["name"];
   const bool has_particles = body.hasMember("particles");
   const bool has_shape = body.hasMember("shape");
-  if (has_particles == has_shape) {
-    throw SceneError("needs exactly one of particles (a list) or shape (box, sphere, cylinder)");
+  const bool has_inertial = body.hasMember("inertial");
+  if (int{has_particles} + int{has_shape} + int{has_inertial} != 1) {
+    throw SceneError(
+        "needs exactly one of particles (a list), shape (box, sphere, cylinder) or inertial "
+        "(mass, origin, inertia)");
   }
-  std::vector<core::Particle> particles;
+  std::optional<core::BodyModel> model;
   if (has_particles) {
     CheckKeys(body, {"particles"});
-    particles = ReadParticles(body["particles"]);
-  } else {
+    model.emplace(name, ReadParticles(body["particles"]));
+  } else if (has_shape) {
     const XmlRpcValue& shape = body["shape"];
     if (shape.getType() != XmlRpcValue::TypeString) {
       throw SceneError("shape must be one of box, sphere, cylinder, got " + Describe(shape));
     }
     CheckKeys(body, ShapeKeys(shape));
-    particles = ReadShape(body, shape);
+    model.emplace(name, ReadShape(body, shape));
+  } else {
+    CheckKeys(body, {"inertial"});
+    model.emplace(ReadInertial(name, body["inertial"]));
   }
   const Eigen::Vector3d position = ReadOptionalVector3(body, "position");
   const Eigen::Quaterniond orientation = ReadOrientation(body);
@@ -164,11 +232,10 @@ core::BodyDef ReadBody(const XmlRpcValue& body) {
   const Eigen::Vector3d angular_velocity = ReadOptionalVector3(body, "angular_velocity");
   const core::BodyProperties properties = ReadProperties(body);
 
-  core::BodyModel model(name, std::move(particles));
   // Unique names and a state the world's step can take are the World's to check.
   const core::BodyState initial_state =
-      core::StateFromTwist(model, position, orientation, linear_velocity, angular_velocity);
-  return core::BodyDef{std::move(model), initial_state, properties};
+      core::StateFromTwist(*model, position, orientation, linear_velocity, angular_velocity);
+  return core::BodyDef{std::move(*model), initial_state, properties};
 }
 
 }  // namespace
@@ -176,7 +243,8 @@ core::BodyDef ReadBody(const XmlRpcValue& body) {
 void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies) {
   std::string entry = "bodies[" + std::to_string(index) + "]";
   if (body.getType() != XmlRpcValue::TypeStruct) {
-    throw SceneError(entry + ": must be a map with a name and particles or a shape, got " +
+    throw SceneError(entry +
+                     ": must be a map with a name and particles, a shape or inertial, got " +
                      Describe(body));
   }
   if (!body.hasMember("name")) throw SceneError(entry + ": name is missing");
@@ -201,8 +269,8 @@ void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* sce
 }
 
 void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies) {
-  if (bodies.getType() != XmlRpcValue::TypeArray || bodies.size() == 0) {
-    throw SceneError("~bodies must be a non-empty list of bodies, got " + Describe(bodies));
+  if (bodies.getType() != XmlRpcValue::TypeArray) {  // an empty list is an empty world
+    throw SceneError("~bodies must be a list of bodies, got " + Describe(bodies));
   }
   if (static_cast<std::size_t>(bodies.size()) > kMaxSceneBodies) {
     throw SceneError("~bodies has " + std::to_string(bodies.size()) + " entries, at most " +

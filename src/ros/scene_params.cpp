@@ -9,11 +9,9 @@ Scene LoadScene(const ros::NodeHandle& private_nh) {
   Scene scene;
   scene.settings = ReadSettings(private_nh);
   scene.settings.imu_noise = ReadImuNoise(private_nh);
+  // No `bodies` is an empty world, as an empty list is: bodies come by ~spawn_body.
   XmlRpc::XmlRpcValue bodies;
-  if (!private_nh.getParam("bodies", bodies)) {
-    throw SceneError("~bodies is missing (load a scene, e.g. config/default_scene.yaml)");
-  }
-  ParseBodies(bodies, &scene.bodies);
+  if (private_nh.getParam("bodies", bodies)) ParseBodies(bodies, &scene.bodies);
   if (scene.settings.shard.count > 1) {
     // Every shard checks the whole scene (names, states), with its indices,
     // as a World of the default WorldDef would.

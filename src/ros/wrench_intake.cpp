@@ -36,6 +36,8 @@ const char* ToString(WrenchMsgRejection rejection) {
       return "lockstep_future_stamp";
     case WrenchMsgRejection::kOtherShard:
       return "other_shard";
+    case WrenchMsgRejection::kUnknownParticle:
+      return "unknown_particle";
   }
   return "unknown";
 }
@@ -109,6 +111,11 @@ Checked<CoreWrench> CheckWrench(const std::string& body, const std::uint32_t* pa
   if (!id) return reject(NotHereRejection(body, frames), NotHereMessage(body, frames));
   if (particle != nullptr) {
     const std::size_t particle_count = frames.world->model(*id).particle_count();
+    if (particle_count == 0) {  // a body given by its inertia tensor
+      return reject(WrenchMsgRejection::kUnknownParticle,
+                    "particle " + std::to_string(*particle) + " of body '" + body +
+                        "': the body has no particles (use ~" + body + "/wrench)");
+    }
     if (*particle >= particle_count) {
       return reject(WrenchMsgRejection::kParticleOutOfRange,
                     "particle " + std::to_string(*particle) + " out of range: body '" + body +

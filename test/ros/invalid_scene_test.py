@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Invalid scenes and parameters stop the node (doc/node.md, "Parameters", last paragraph).
 
-An invalid scene or parameter (missing or empty `bodies`, a duplicate or empty
+An invalid scene or parameter (`bodies` not a list, a duplicate or empty
 name, a mass <= 0 or not finite, a position not of 3 finite numbers, a
 non-positive rate, `publish_rate` > `rate`, an unknown integrator) stops the
 node at start with a non-zero exit and one error line that names the offending
@@ -14,7 +14,8 @@ an uncaught exception's abort is not a clean stop) with a code > 0, and stderr
 holds exactly one error line (rosconsole "[ERROR]" / "[FATAL]") naming the key
 and, for an entry of `bodies`, the entry (its name, or its index when the name
 is the problem). A valid scene serves as a control: the node must still be
-running after a few seconds.
+running after a few seconds; so must a scene without `bodies` or with an
+empty list (an empty world).
 
 Through launch/rigid_body_sim.launch (roslaunch, on the test's master), an
 invalid scene file: with the default `respawn:=false` the launch ends by
@@ -199,11 +200,25 @@ class InvalidScene(unittest.TestCase):
 
     # ---- bodies ------------------------------------------------------------
 
-    def test_missing_bodies(self):
-        self.check_rejected('missing_bodies', {'rate': 1000.0}, 'bodies')
+    def test_missing_bodies_is_an_empty_world(self):
+        code, out, err = self._run('missing_bodies', {'rate': 1000.0}, timeout=4.0)
+        self.assertIsNone(code, 'a scene without bodies must keep the node running; exit %s\n%s'
+                          % (code, err))
 
-    def test_empty_bodies(self):
-        self.check_rejected('empty_bodies', {'bodies': []}, 'bodies')
+    def test_empty_bodies_is_an_empty_world(self):
+        code, out, err = self._run('empty_bodies', {'bodies': []}, timeout=4.0)
+        self.assertIsNone(code, 'an empty bodies list must keep the node running; exit %s\n%s'
+                          % (code, err))
+
+    def test_inertial_mass_negative(self):
+        inertial = {'mass': -1.0, 'inertia': {'ixx': 1.0, 'ixy': 0.0, 'ixz': 0.0, 'iyy': 1.0,
+                                              'iyz': 0.0, 'izz': 1.0}}
+        body = {'name': 'badbody', 'inertial': inertial}
+        self.check_rejected('inertial_mass_negative', {'bodies': [good_body(), body]},
+                            'inertial.mass', entry='badbody')
+
+    def test_bodies_not_a_list(self):
+        self.check_rejected('bodies_not_a_list', {'bodies': 5}, 'bodies')
 
     def test_duplicate_name(self):
         self.check_rejected('duplicate_name', {'bodies': [good_body('twin'), good_body('twin')]},

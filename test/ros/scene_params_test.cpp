@@ -2,6 +2,9 @@
 // over, without a master.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
+#include "rigid_body_sim/core/inertia.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/scene_params.h"
 
@@ -96,14 +99,182 @@ TEST(SceneParams, ErrorsNameTheEntryAndTheKey) {
   two[0] = 1.0;
   two[1] = 2.0;
   flat["position"] = two;
-  EXPECT_NE(ErrorOf(List({flat})).find("bodies[0] (name 'flat'): position must be 3 finite numbers"), std::string::npos);
+  EXPECT_NE(
+      ErrorOf(List({flat})).find("bodies[0] (name 'flat'): position must be 3 finite numbers"),
+      std::string::npos);
   XmlRpcValue bad_name = Dumbbell("9lives");
   EXPECT_NE(ErrorOf(List({bad_name})).find("bodies[0] (name '9lives'): name must be"),
             std::string::npos);
   XmlRpcValue both = Dumbbell("both");
   both["shape"] = "box";
   EXPECT_NE(ErrorOf(List({both})).find("needs exactly one of particles"), std::string::npos);
-  EXPECT_NE(ErrorOf(XmlRpcValue()).find("~bodies must be a non-empty list"), std::string::npos);
+  EXPECT_EQ(ErrorOf(XmlRpcValue(5)), "~bodies must be a list of bodies, got 5");
+}
+
+TEST(SceneParams, AnEmptyListIsAnEmptyWorld) {
+  XmlRpcValue empty;
+  empty.setSize(0);
+  SceneBodies scene_bodies;
+  ParseBodies(empty, &scene_bodies);
+  EXPECT_TRUE(scene_bodies.models.empty());
+  EXPECT_TRUE(scene_bodies.initial_states.empty());
+  EXPECT_TRUE(scene_bodies.properties.empty());
+}
+
+XmlRpcValue Puck(const std::string& name) {
+  XmlRpcValue body;
+  body["name"] = name;
+  XmlRpcValue& inertial = body["inertial"];
+  inertial["mass"] = 1.5;
+  inertial["origin"]["xyz"] = Vector(0.01, -0.02, 0.03);
+  inertial["origin"]["rpy"] = Vector(0.1, -0.2, 0.3);
+  XmlRpcValue& inertia = inertial["inertia"];
+  inertia["ixx"] = 0.03;
+  inertia["ixy"] = 0.001;
+  inertia["ixz"] = -0.002;
+  inertia["iyy"] = 0.04;
+  inertia["iyz"] = 0.0015;
+  inertia["izz"] = 0.05;
+  body["position"] = Vector(0.0, 0.0, 2.0);
+  return body;
+}
+
+double RelativeError(const Eigen::MatrixXd& got, const Eigen::MatrixXd& want) {
+  return (got - want).norm() / want.norm();
+}
+
+TEST(SceneParams, AnInertialEntryGivesItsMassComAndTensorExactly) {
+  SceneBodies scene_bodies;
+  ParseBodies(List({Dumbbell("bell"), Puck("puck")}), &scene_bodies);
+  ASSERT_EQ(scene_bodies.models.size(), 2u);
+  const core::BodyModel& model = scene_bodies.models[1];
+  const core::RigidPart want =
+      core::InertialPart(1.5, Eigen::Vector3d(0.01, -0.02, 0.03), Eigen::Vector3d(0.1, -0.2, 0.3),
+                         core::InertiaEntries{0.03, 0.001, -0.002, 0.04, 0.0015, 0.05});
+  EXPECT_EQ(model.name(), "puck");
+  EXPECT_EQ(model.particle_count(), 0u);
+  EXPECT_LE(std::abs(model.mass() - 1.5) / 1.5, 1e-12);
+  EXPECT_LE(RelativeError(model.reference_com(), want.com_m), 1e-12);
+  EXPECT_LE(RelativeError(model.inertia(), want.inertia_kgm2), 1e-12);
+  // The tensor turned by rpy (fixed axes x, y, z: R = Rz Ry Rx) keeps its trace.
+  EXPECT_NEAR(model.inertia().trace(), 0.12, 1e-15);
+  EXPECT_GT(std::abs(model.inertia()(0, 1) - 0.001), 1e-4);
+  EXPECT_TRUE(scene_bodies.initial_states[1].position.isApprox(Eigen::Vector3d(0.0, 0.0, 2.0)));
+
+  // origin is optional (0), as are xyz and rpy inside it; ints are numbers.
+  XmlRpcValue plain = Puck("plain");
+  plain["inertial"] = XmlRpcValue();
+  plain["inertial"]["mass"] = 2;
+  plain["inertial"]["inertia"] = Puck("x")["inertial"]["inertia"];
+  plain["inertial"]["inertia"]["ixy"] = 0;
+  XmlRpcValue point = Puck("point");  // a zero tensor: a point mass
+  for (const char* key : {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"}) {
+    point["inertial"]["inertia"][key] = 0.0;
+  }
+  point["inertial"]["origin"] = XmlRpcValue();
+  point["inertial"]["origin"]["rpy"] = Vector(0.0, 0.0, 1.0);
+  SceneBodies more;
+  ParseBodies(List({plain, point}), &more);
+  EXPECT_EQ(more.models[0].mass(), 2.0);
+  EXPECT_EQ(more.models[0].reference_com(), Eigen::Vector3d::Zero());
+  EXPECT_EQ(more.models[0].inertia()(0, 1), 0.0);
+  EXPECT_EQ(more.models[0].inertia()(2, 2), 0.05);
+  EXPECT_EQ(more.models[1].rank(), 0);
+}
+
+TEST(SceneParams, InertialErrorsNameTheEntryAndTheKeyPath) {
+  XmlRpcValue negative = Puck("puck");
+  negative["inertial"]["mass"] = -1.0;
+  EXPECT_EQ(ErrorOf(List({negative})),
+            "bodies[0] (name 'puck'): inertial.mass must be > 0, got -1");
+
+  XmlRpcValue text = Puck("puck");
+  text["inertial"]["inertia"]["ixx"] = "x";
+  EXPECT_EQ(ErrorOf(List({Dumbbell("a"), text})),
+            "bodies[1] (name 'puck'): inertial.inertia.ixx must be a finite number, got 'x'");
+
+  XmlRpcValue indefinite = Puck("puck");  // moments 2 ± 3: one negative
+  XmlRpcValue& tensor = indefinite["inertial"]["inertia"];
+  tensor["ixx"] = 2.0;
+  tensor["iyy"] = 2.0;
+  tensor["izz"] = 2.0;
+  tensor["ixy"] = 3.0;
+  tensor["ixz"] = 0.0;
+  tensor["iyz"] = 0.0;
+  EXPECT_EQ(
+      ErrorOf(List({indefinite}))
+          .find("bodies[0] (name 'puck'): inertial.inertia must be positive semi-definite, got "
+                "principal moments"),
+      0u)
+      << ErrorOf(List({indefinite}));
+
+  XmlRpcValue triangle = Puck("puck");  // 1 + 1 < 3
+  XmlRpcValue& diagonal = triangle["inertial"]["inertia"];
+  diagonal["ixx"] = 1.0;
+  diagonal["iyy"] = 1.0;
+  diagonal["izz"] = 3.0;
+  diagonal["ixy"] = 0.0;
+  diagonal["ixz"] = 0.0;
+  diagonal["iyz"] = 0.0;
+  EXPECT_EQ(
+      ErrorOf(List({triangle}))
+          .find("bodies[0] (name 'puck'): inertial.inertia must obey the triangle inequality"),
+      0u)
+      << ErrorOf(List({triangle}));
+
+  XmlRpcValue missing_entry = Puck("puck");
+  XmlRpcValue five;
+  for (const char* key : {"ixx", "ixy", "iyy", "iyz", "izz"}) {
+    five[key] = missing_entry["inertial"]["inertia"][key];
+  }
+  missing_entry["inertial"]["inertia"] = five;
+  EXPECT_EQ(ErrorOf(List({missing_entry})),
+            "bodies[0] (name 'puck'): inertial.inertia.ixz is missing");
+
+  XmlRpcValue no_inertia = Puck("puck");
+  XmlRpcValue mass_only;
+  mass_only["mass"] = 1.0;
+  no_inertia["inertial"] = mass_only;
+  EXPECT_EQ(ErrorOf(List({no_inertia})), "bodies[0] (name 'puck'): inertial.inertia is missing");
+
+  XmlRpcValue origin_key = Puck("puck");
+  origin_key["inertial"]["origin"]["quaternion"] = Vector(0, 0, 0);
+  EXPECT_EQ(ErrorOf(List({origin_key})),
+            "bodies[0] (name 'puck'): inertial.origin has unknown key 'quaternion' (known: xyz, "
+            "rpy)");
+
+  XmlRpcValue inertial_key = Puck("puck");
+  inertial_key["inertial"]["com"] = Vector(0, 0, 0);
+  EXPECT_EQ(ErrorOf(List({inertial_key})),
+            "bodies[0] (name 'puck'): inertial has unknown key 'com' (known: mass, origin, "
+            "inertia)");
+
+  XmlRpcValue inertia_key = Puck("puck");
+  inertia_key["inertial"]["inertia"]["iyx"] = 0.0;
+  EXPECT_EQ(ErrorOf(List({inertia_key})),
+            "bodies[0] (name 'puck'): inertial.inertia has unknown key 'iyx' (known: ixx, ixy, "
+            "ixz, iyy, iyz, izz)");
+
+  XmlRpcValue short_xyz = Puck("puck");
+  short_xyz["inertial"]["origin"]["xyz"] = 1.0;
+  EXPECT_EQ(ErrorOf(List({short_xyz})),
+            "bodies[0] (name 'puck'): inertial.origin.xyz must be 3 finite numbers, got 1");
+
+  XmlRpcValue not_a_map = Puck("puck");
+  not_a_map["inertial"] = 1.5;
+  EXPECT_EQ(ErrorOf(List({not_a_map})),
+            "bodies[0] (name 'puck'): inertial must be a map {mass, origin, inertia}, got 1.5");
+
+  XmlRpcValue both = Puck("both");
+  both["particles"] = Dumbbell("x")["particles"];
+  EXPECT_EQ(ErrorOf(List({both})),
+            "bodies[0] (name 'both'): needs exactly one of particles (a list), shape (box, "
+            "sphere, cylinder) or inertial (mass, origin, inertia)");
+
+  XmlRpcValue extra = Puck("extra");
+  extra["mass"] = 1.0;  // a shape's key
+  EXPECT_NE(ErrorOf(List({extra})).find("bodies[0] (name 'extra'): unknown key 'mass'"),
+            std::string::npos);
 }
 
 TEST(SceneParams, AShapeOfResolutionOneIsRefused) {
@@ -134,8 +305,9 @@ TEST(SceneParams, GravityScaleAndDampingAreReadAndChecked) {
 
   XmlRpcValue negative = Dumbbell("negative");
   negative["linear_damping"] = -1.0;
-  EXPECT_EQ(ErrorOf(List({negative})),
-            "bodies[0] (name 'negative'): linear_damping must be a finite number >= 0 [1/s], got -1");
+  EXPECT_EQ(
+      ErrorOf(List({negative})),
+      "bodies[0] (name 'negative'): linear_damping must be a finite number >= 0 [1/s], got -1");
   XmlRpcValue infinite = Dumbbell("infinite");
   infinite["gravity_scale"] = std::numeric_limits<double>::infinity();
   EXPECT_EQ(ErrorOf(List({Dumbbell("a"), infinite})),

@@ -53,6 +53,24 @@ TEST(WrenchIntake, FrameIdChoosesTheAxes) {
             WrenchMsgRejection::kNonFinite);
 }
 
+TEST(WrenchIntake, ABodyWithoutParticlesTakesNoParticleWrench) {
+  // A body given by its inertia tensor: unknown_particle, whatever the index.
+  static const core::World world({core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0.5}}}),
+                                  core::BodyModel("puck", 1.5, Eigen::Vector3d::Zero(),
+                                                  Eigen::Vector3d(1, 1, 2).asDiagonal())},
+                                 std::vector<core::BodyState>(2), core::WorldOptions{});
+  const WrenchFrames frames = MakeWrenchFrames(world, "world", "");
+  const ros::Time start(1700000000, 0);
+  const CheckedWrench checked = CheckParticleWrench(Message("puck", 0, ""), frames, start, 0.0);
+  EXPECT_EQ(checked.rejection, WrenchMsgRejection::kUnknownParticle);
+  EXPECT_EQ(checked.detail,
+            "particle 0 of body 'puck': the body has no particles (use ~puck/wrench)");
+  EXPECT_STREQ(ToString(WrenchMsgRejection::kUnknownParticle), "unknown_particle");
+  EXPECT_EQ(CheckParticleWrench(Message("rod", 2, ""), frames, start, 0.0).rejection,
+            WrenchMsgRejection::kParticleOutOfRange);
+  EXPECT_TRUE(CheckParticleWrench(Message("rod", 1, ""), frames, start, 0.0).accepted());
+}
+
 TEST(WrenchIntake, StampsBecomeSimulationTimesExactlyAndNeverThrow) {
   const ros::Time start(1700000000, 250000000);
   ParticleWrench msg = Message("box", 1, "");

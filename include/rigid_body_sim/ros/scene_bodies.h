@@ -1,5 +1,6 @@
 // The scene's `bodies` list (doc/node.md, "The scene"), and one entry of it as
-// ~spawn_body reads it: each entry a particle list or a generated shape.
+// ~spawn_body reads it: each entry a particle list, a generated shape or an
+// inertial element (a mass, a COM and an inertia tensor, as URDF writes them).
 #pragma once
 
 #include <cstddef>
@@ -28,10 +29,10 @@ constexpr std::size_t kMaxSceneBodies = 100000;
 // The most particles one body may have, for the same reason.
 constexpr int kMaxParticlesPerBody = 100000;
 
-// The `bodies` list alone, so that it can be checked without a master.
-// Throws SceneError. Unique names and initial states (core::CheckBodyDef with
-// the world's step) are checked by the core::World built from the result, or
-// core::CheckBodyDefs.
+// The `bodies` list alone, so that it can be checked without a master; an
+// empty list is an empty world. Throws SceneError. Unique names and initial
+// states (core::CheckBodyDef with the world's step) are checked by the
+// core::World built from the result, or core::CheckBodyDefs.
 void ParseBodies(const XmlRpc::XmlRpcValue& bodies, SceneBodies* scene_bodies);
 
 // One entry of `bodies`, as it would be checked at index `index` of the

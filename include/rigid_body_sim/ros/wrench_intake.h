@@ -35,11 +35,12 @@ enum class WrenchMsgRejection {
   kTooManyEntries,       // array entries past WrenchIntake::kMaxArrayEntries
   kLockstepFutureStamp,  // a lockstep answer stamped after the last published cycle
   kOtherShard,           // a body another shard simulates: ignored, counted apart, not a rejection
+  kUnknownParticle,      // a particle wrench for a body without particles (an inertial one)
 };
-constexpr std::size_t kWrenchMsgRejectionCount = 8;
+constexpr std::size_t kWrenchMsgRejectionCount = 9;
 // "non_finite", "unknown_body", "particle_out_of_range", "unknown_frame",
-// "too_many_entries", "lockstep_future_stamp" (the diagnostics key is
-// "rejected_" + this), "other_shard".
+// "too_many_entries", "lockstep_future_stamp", "unknown_particle" (the
+// diagnostics key is "rejected_" + this), "other_shard".
 const char* ToString(WrenchMsgRejection rejection);
 
 // What a message is checked against: the world's bodies and the frames that
