@@ -3,28 +3,13 @@
 #include <cmath>
 
 #include "rigid_body_sim/core/format_number.h"
+#include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
 
 namespace rigid_body_sim {
 namespace {
 
 using XmlRpc::XmlRpcValue;
-
-// A value as the user wrote it, for "got ..." in error messages.
-std::string Describe(XmlRpcValue& value) {
-  switch (value.getType()) {
-    case XmlRpcValue::TypeInt:
-      return std::to_string(static_cast<int>(value));
-    case XmlRpcValue::TypeDouble:
-      return core::FormatNumber(static_cast<double>(value));
-    case XmlRpcValue::TypeString:
-      return "'" + static_cast<std::string&>(value) + "'";
-    case XmlRpcValue::TypeBoolean:
-      return static_cast<bool>(value) ? "true" : "false";
-    default:
-      return "a " + std::string(value.getType() == XmlRpcValue::TypeArray ? "list" : "map");
-  }
-}
 
 double ParseStddev(const ParamLookup& lookup, const std::string& key) {
   XmlRpcValue value;

@@ -16,6 +16,7 @@
 
 #include "rigid_body_sim/core/format_number.h"
 #include "rigid_body_sim/core/inertia.h"
+#include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
 
 namespace rigid_body_sim {
@@ -88,26 +89,6 @@ struct PendingLink {
 };
 
 std::string Quoted(const std::string& text) { return "'" + text + "'"; }
-
-// A value as the user wrote it, for "got ..." in error messages.
-std::string Describe(XmlRpcValue& value) {
-  switch (value.getType()) {
-    case XmlRpcValue::TypeInt:
-      return std::to_string(static_cast<int>(value));
-    case XmlRpcValue::TypeDouble:
-      return core::FormatNumber(static_cast<double>(value));
-    case XmlRpcValue::TypeString:
-      return Quoted(static_cast<std::string&>(value));
-    case XmlRpcValue::TypeBoolean:
-      return static_cast<bool>(value) ? "true" : "false";
-    case XmlRpcValue::TypeArray:
-      return "a list";
-    case XmlRpcValue::TypeStruct:
-      return "a map";
-    default:
-      return "a value of another type";
-  }
-}
 
 std::string TooLong(std::size_t bytes) {
   return "is " + std::to_string(bytes) + " bytes, more than the limit of " +
