@@ -17,8 +17,8 @@
 # changed header is checked through the source of the same name when there
 # is one (else on its own); every source checks the package's headers it
 # includes. Sources run RBS_TIDY_JOBS at a time (default RBS_JOBS, 2): a few
-# files take seconds; --all, 60 sources, about 6.5 minutes of CPU, so about
-# 3.5 minutes on two idle cores (8.8 measured while other builds shared them).
+# files take seconds; --all (65 sources) about 7 minutes of CPU, so 3.5 to 4
+# minutes on two idle cores (9 to 12 measured while other builds shared them).
 set -euo pipefail
 # shellcheck source=scripts/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
