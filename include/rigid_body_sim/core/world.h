@@ -82,10 +82,9 @@ class World {
   // bodies are stepped in parallel; the call returns when all are done.
   void Step();
 
-  // How many substeps of dt/n `body` needs from `state` under its current
-  // load: the least n with dt/n · rate <= kMaxSubstepAngle, 0 if that is more
-  // than max_substeps.
-  std::uint32_t SubstepsFor(std::size_t body, const BodyState& state) const;
+  // How many substeps of dt/n body `index` needs from `state` under its
+  // current load (step_policy.h's SubstepsFor): 0 if more than max_substeps.
+  std::uint32_t SubstepsFor(std::size_t index, const BodyState& state) const;
   // The most substeps a body took in the last Step.
   std::uint32_t last_step_substeps_max() const { return last_step_substeps_max_; }
 
