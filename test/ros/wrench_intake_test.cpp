@@ -4,23 +4,14 @@
 
 #include <gtest/gtest.h>
 
-#include "rigid_body_sim/core/shapes.h"
+#include "wrench_frames_fixture.h"
 
 #include "rigid_body_sim/ros/wrench_intake.h"
 
 namespace rigid_body_sim {
 namespace {
 
-// A box of 8 particles and a rod of 3.
-const core::World& BoxAndRod() {
-  static const core::World world(
-      {core::BodyModel("box", core::MakeBox(1.0, {0.2, 0.3, 0.4}, 2)),
-       core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0}}, {1.0, {0, 0, 0.5}}})},
-      std::vector<core::BodyState>(2), core::WorldOptions{});
-  return world;
-}
-
-WrenchFrames Frames() { return MakeWrenchFrames(BoxAndRod(), "world", "sim/"); }
+WrenchFrames Frames() { return test::BoxAndRodFrames(); }
 
 ParticleWrench Message(const std::string& body, std::uint32_t particle, const std::string& frame) {
   ParticleWrench msg;

@@ -3,23 +3,14 @@
 
 #include <gtest/gtest.h>
 
-#include "rigid_body_sim/core/shapes.h"
+#include "wrench_frames_fixture.h"
 
 #include "rigid_body_sim/ros/wrench_job_request.h"
 
 namespace rigid_body_sim {
 namespace {
 
-// A box of 8 particles and a rod of 3.
-const core::World& BoxAndRod() {
-  static const core::World world(
-      {core::BodyModel("box", core::MakeBox(1.0, {0.2, 0.3, 0.4}, 2)),
-       core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0}}, {1.0, {0, 0, 0.5}}})},
-      std::vector<core::BodyState>(2), core::WorldOptions{});
-  return world;
-}
-
-WrenchFrames Frames() { return MakeWrenchFrames(BoxAndRod(), "world", "sim/"); }
+WrenchFrames Frames() { return test::BoxAndRodFrames(); }
 
 ApplyBodyWrench::Request Request(const std::string& body, const std::string& frame,
                                  double duration_s) {
@@ -39,7 +30,7 @@ TEST(WrenchJobRequest, BecomesAJobFromTheNextStepOverItsDuration) {
   std::string message;
   const auto job = JobFromRequest(Request("rod", "sim/rod", 0.25), Frames(), kStart, 2.0, &message);
   ASSERT_TRUE(job) << message;
-  EXPECT_EQ(job->body, BoxAndRod().id(1));
+  EXPECT_EQ(job->body, test::BoxAndRod().id(1));
   EXPECT_EQ(job->axes, core::WrenchAxes::kBody);
   EXPECT_EQ(job->point_m, Eigen::Vector3d(0.25, 0.0, 0.0));
   EXPECT_EQ(job->force, Eigen::Vector3d(0.0, 3.0, 0.0));
