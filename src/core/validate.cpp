@@ -133,13 +133,41 @@ void CheckBodyProperties(const BodyProperties& properties) {
   RBS_CHECK(error.empty(), error);
 }
 
+namespace {
+
+std::string TakerName(const NameTaker& taker) {
+  return std::string(taker.is_site ? "a site of " : "") + "bodies[" +
+         std::to_string(taker.index) + "]";
+}
+
+}  // namespace
+
 void CheckBodyDef(const BodyDef& def, std::size_t index, const WorldDef& world,
-                  const Integrator& integrator, std::optional<std::size_t> name_owner) {
+                  const Integrator& integrator, const NameLookup& taken) {
   RBS_DCHECK(world.integrator == integrator.name());
   const std::string& name = def.model.name();
   RBS_CHECK(!name.empty(), Entry(index, name) + ": name must not be empty");
-  RBS_CHECK(!name_owner || *name_owner == index,
-            Entry(index, name) + ": name duplicates bodies[" + std::to_string(*name_owner) + "]");
+  const auto taker = [&](const std::string& frame) {
+    return taken ? taken(frame) : std::optional<NameTaker>();
+  };
+  if (const std::optional<NameTaker> owner = taker(name)) {
+    RBS_CHECK(owner->index == index,
+              Entry(index, name) + ": name duplicates " + TakerName(*owner));
+  }
+  const std::vector<Site>& sites = def.frames.sites;
+  for (std::size_t k = 0; k < sites.size(); ++k) {
+    const std::string site = Entry(index, name) + ": sites[" + std::to_string(k) + "]";
+    RBS_CHECK(!sites[k].name.empty(), site + ": name must not be empty");
+    for (std::size_t j = 0; j < k; ++j) {
+      RBS_CHECK(sites[j].name != sites[k].name, site + ": name '" + sites[k].name +
+                                                    "' duplicates sites[" + std::to_string(j) +
+                                                    "]");
+    }
+    if (const std::optional<NameTaker> owner = taker(sites[k].name)) {
+      RBS_CHECK(owner->index == index, site + ": name '" + sites[k].name + "' duplicates " +
+                                           TakerName(*owner));
+    }
+  }
   const std::string properties_error = PropertiesError(def.properties);
   RBS_CHECK(properties_error.empty(), Entry(index, name) + ": " + properties_error);
   BodyFault fault = CheckState(def.model, def.initial_state);
@@ -154,13 +182,16 @@ void CheckBodyDef(const BodyDef& def, std::size_t index, const WorldDef& world,
 
 void CheckBodyDefs(const std::vector<BodyDef>& defs, const WorldDef& world) {
   const std::unique_ptr<Integrator> integrator = MakeIntegrator(world.integrator);
-  std::unordered_map<std::string, std::size_t> first_with_name;
+  std::unordered_map<std::string, NameTaker> takers;
+  const NameLookup taken = [&takers](const std::string& name) -> std::optional<NameTaker> {
+    const auto found = takers.find(name);
+    if (found == takers.end()) return std::nullopt;
+    return found->second;
+  };
   for (std::size_t i = 0; i < defs.size(); ++i) {
-    const auto first = first_with_name.find(defs[i].model.name());
-    CheckBodyDef(
-        defs[i], i, world, *integrator,
-        first == first_with_name.end() ? std::nullopt : std::optional<std::size_t>(first->second));
-    first_with_name.emplace(defs[i].model.name(), i);
+    CheckBodyDef(defs[i], i, world, *integrator, taken);
+    takers.emplace(defs[i].model.name(), NameTaker{i, false});
+    for (const Site& site : defs[i].frames.sites) takers.emplace(site.name, NameTaker{i, true});
   }
 }
 

@@ -31,17 +31,22 @@ constexpr std::size_t kBodiesPerBlock = 1024;
 }  // namespace
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
-             const WorldOptions& options, std::vector<BodyProperties> properties)
+             const WorldOptions& options, std::vector<BodyProperties> properties,
+             std::vector<BodyFrames> frames)
     : options_(options), integrator_(MakeIntegrator(options.integrator)) {
   CheckWorldDef(options_);
   if (properties.empty()) properties.resize(models.size());
-  if (initial_states.size() != models.size() || properties.size() != models.size()) {
-    throw std::invalid_argument("one initial state and one set of properties per body is required");
+  if (frames.empty()) frames.resize(models.size());
+  if (initial_states.size() != models.size() || properties.size() != models.size() ||
+      frames.size() != models.size()) {
+    throw std::invalid_argument(
+        "one initial state, one set of properties and one set of frames per body is required");
   }
   has_gravity_ = !options_.gravity.isZero(0.0);
   for (std::size_t i = 0; i < models.size(); ++i) {
-    CheckBody(i, models[i], initial_states[i], properties[i]);
-    const BodyId id = bodies_.Add(std::move(models[i]), initial_states[i], properties[i]);
+    BodyDef def{std::move(models[i]), initial_states[i], properties[i], std::move(frames[i])};
+    CheckBody(i, def);
+    const BodyId id = bodies_.Add(std::move(def));
     PrepareBody(i);
     wrenches_.AddBody(id, bodies_.hot().models[i].particle_count());
   }
@@ -55,14 +60,17 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
   team_ = std::make_unique<ThreadTeam>(options_.threads);
 }
 
-void World::CheckBody(std::size_t index, const BodyModel& model, const BodyState& initial_state,
-                      const BodyProperties& properties) const {
-  std::optional<std::size_t> name_owner;
-  if (const std::optional<BodyId> first = bodies_.Find(model.name())) {
-    name_owner = bodies_.CheckedIndex(*first);
-  }
-  CheckBodyDef(BodyDef{model, initial_state, properties}, index, options_, *integrator_,
-               name_owner);
+void World::CheckBody(std::size_t index, const BodyDef& def) const {
+  const NameLookup taken = [this](const std::string& name) -> std::optional<NameTaker> {
+    if (const std::optional<BodyId> body = bodies_.Find(name)) {
+      return NameTaker{bodies_.CheckedIndex(*body), false};
+    }
+    if (const std::optional<SiteRef> site = bodies_.FindSite(name)) {
+      return NameTaker{bodies_.CheckedIndex(site->body), true};
+    }
+    return std::nullopt;
+  };
+  CheckBodyDef(def, index, options_, *integrator_, taken);
 }
 
 void World::PrepareBody(std::size_t index) {
@@ -74,11 +82,10 @@ void World::PrepareBody(std::size_t index) {
   hot.one_step_momentum_sq[index] = OneStepMomentumSq(model, options_.dt_s);
 }
 
-BodyId World::AddBody(BodyModel model, const BodyState& initial_state,
-                      const BodyProperties& properties) {
+BodyId World::AddBody(BodyDef def) {
   const std::size_t index = size();
-  CheckBody(index, model, initial_state, properties);
-  const BodyId id = bodies_.Add(std::move(model), initial_state, properties);
+  CheckBody(index, def);
+  const BodyId id = bodies_.Add(std::move(def));
   PrepareBody(index);
   // Sums again, with gravity on the new body.
   wrenches_.AddBody(id, bodies_.hot().models[index].particle_count());

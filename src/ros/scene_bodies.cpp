@@ -263,6 +263,7 @@ void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* sce
     scene_bodies->models.push_back(std::move(def.model));
     scene_bodies->initial_states.push_back(def.initial_state);
     scene_bodies->properties.push_back(def.properties);
+    scene_bodies->frames.push_back(std::move(def.frames));
   } catch (const std::exception& error) {  // SceneError, or the core's std::invalid_argument
     throw SceneError(entry + ": " + error.what());
   }
@@ -284,7 +285,7 @@ std::vector<core::BodyDef> BodyDefs(const SceneBodies& scene_bodies) {
   defs.reserve(scene_bodies.models.size());
   for (std::size_t i = 0; i < scene_bodies.models.size(); ++i) {
     defs.push_back(core::BodyDef{scene_bodies.models[i], scene_bodies.initial_states[i],
-                                 scene_bodies.properties[i]});
+                                 scene_bodies.properties[i], scene_bodies.frames[i]});
   }
   return defs;
 }

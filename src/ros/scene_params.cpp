@@ -33,6 +33,7 @@ void KeepShard(const ShardSettings& shard, Scene* scene) {
     scene->bodies.models.push_back(std::move(all.models[i]));
     scene->bodies.initial_states.push_back(all.initial_states[i]);
     scene->bodies.properties.push_back(all.properties[i]);
+    scene->bodies.frames.push_back(std::move(all.frames[i]));
   }
 }
 

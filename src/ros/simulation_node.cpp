@@ -35,7 +35,8 @@ core::WorldOptions MakeWorldOptions(const NodeSettings& settings) {
 SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
     : settings_(scene.settings),
       world_(std::move(scene.bodies.models), std::move(scene.bodies.initial_states),
-             MakeWorldOptions(settings_), std::move(scene.bodies.properties)),
+             MakeWorldOptions(settings_), std::move(scene.bodies.properties),
+             std::move(scene.bodies.frames)),
       lattice_(settings_),
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
       intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix,

@@ -45,7 +45,8 @@ void WorldEditor::Reset() {
 }
 
 std::size_t WorldEditor::AddBody(SceneBodies entry) {
-  world_.AddBody(std::move(entry.models[0]), entry.initial_states[0], entry.properties[0]);
+  world_.AddBody(core::BodyDef{std::move(entry.models[0]), entry.initial_states[0],
+                               entry.properties[0], std::move(entry.frames[0])});
   body_count_ = world_.size();
   return world_.size() - 1;
 }

@@ -167,7 +167,11 @@ TEST(Validate, ABodyDefIsNamedByItsEntry) {
   const WorldDef world;
   const std::unique_ptr<Integrator> integrator = MakeIntegrator(world.integrator);
   const auto message = [&](const BodyDef& def, std::optional<std::size_t> owner) {
-    return MessageOf([&] { CheckBodyDef(def, 4, world, *integrator, owner); });
+    const NameLookup taken = [owner](const std::string&) -> std::optional<NameTaker> {
+      if (!owner) return std::nullopt;
+      return NameTaker{*owner, false};
+    };
+    return MessageOf([&] { CheckBodyDef(def, 4, world, *integrator, taken); });
   };
   BodyDef rod{test::RodBody()};
   EXPECT_EQ(message(rod, std::nullopt), "accepted");
@@ -186,6 +190,41 @@ TEST(Validate, ABodyDefIsNamedByItsEntry) {
   spinning.initial_state.angular_momentum = {1e7, 2e7, 3e7};
   EXPECT_EQ(message(spinning, std::nullopt),
             "bodies[4] (name 'diag123'): initial state is spin_aliased");
+}
+
+TEST(Validate, SiteNamesAreUniqueAmongBodiesAndSites) {
+  const WorldDef world;
+  const std::unique_ptr<Integrator> integrator = MakeIntegrator(world.integrator);
+  BodyDef rod{test::RodBody()};
+  rod.frames.sites = {{"tip", {1.0, 0.0, 0.0}, {}}, {"rod", {}, {}}};  // may share its body's name
+  EXPECT_EQ(MessageOf([&] { CheckBodyDef(rod, 0, world, *integrator); }), "accepted");
+  BodyDef twin_sites = rod;
+  twin_sites.frames.sites.push_back({"tip", {}, {}});
+  EXPECT_EQ(MessageOf([&] { CheckBodyDef(twin_sites, 0, world, *integrator); }),
+            "bodies[0] (name 'rod'): sites[2]: name 'tip' duplicates sites[0]");
+  BodyDef unnamed = rod;
+  unnamed.frames.sites[0].name.clear();
+  EXPECT_EQ(MessageOf([&] { CheckBodyDef(unnamed, 0, world, *integrator); }),
+            "bodies[0] (name 'rod'): sites[0]: name must not be empty");
+
+  BodyDef point{test::PointBody()};
+  point.frames.sites = {{"rod", {}, {}}};
+  EXPECT_EQ(MessageOf([&] { CheckBodyDefs({rod, point}, world); }),
+            "bodies[1] (name 'point'): sites[0]: name 'rod' duplicates bodies[0]");
+  point.frames.sites = {{"tip", {}, {}}};
+  EXPECT_EQ(MessageOf([&] { CheckBodyDefs({rod, point}, world); }),
+            "bodies[1] (name 'point'): sites[0]: name 'tip' duplicates a site of bodies[0]");
+  BodyDef tip{BodyModel("tip", {{1.0, {0, 0, 0}}})};
+  EXPECT_EQ(MessageOf([&] { CheckBodyDefs({rod, tip}, world); }),
+            "bodies[1] (name 'tip'): name duplicates a site of bodies[0]");
+  // The World checks as CheckBodyDefs does, and frees a removed body's names.
+  World scene({}, {}, world);
+  scene.AddBody(rod);
+  EXPECT_EQ(MessageOf([&] { scene.AddBody(tip); }),
+            "bodies[1] (name 'tip'): name duplicates a site of bodies[0]");
+  scene.RemoveBody(*scene.FindBody("rod"));
+  EXPECT_EQ(MessageOf([&] { scene.AddBody(tip); }), "accepted");
+  ASSERT_TRUE(scene.FindSite("tip") == std::nullopt);
 }
 
 TEST(Validate, ASceneIsCheckedAsTheWorldBuiltFromItChecksIt) {

@@ -12,8 +12,8 @@ namespace {
 class WrenchTableTest : public ::testing::Test {
  protected:
   WrenchTableTest() {
-    store_.Add(test::Diag123Body(), {}, {});
-    store_.Add(test::RodBody(), {}, {});
+    store_.Add(BodyDef{test::Diag123Body()});
+    store_.Add(BodyDef{test::RodBody()});
     table_ = Table();
   }
   // A table that knows the store's bodies.
@@ -245,7 +245,7 @@ TEST_F(WrenchTableTest, ClearBodyDropsOneBodysWrenchesOnly) {
 }
 
 TEST_F(WrenchTableTest, RemovedBodysWrenchesGoAndTheOthersKeepTheirsAfterMovingDown) {
-  const BodyId third = store_.Add(BodyModel("third", {{1.0, {0, 0, 0}}, {1.0, {1, 0, 0}}}), {}, {});
+  const BodyId third = store_.Add(BodyDef{BodyModel("third", {{1.0, {0, 0, 0}}, {1.0, {1, 0, 0}}})});
   table_.AddBody(third, 2);
   const BodyId first = Id(0);
   table_.Hold(WorldForce(first, 1, {1, 0, 0}));
@@ -263,7 +263,7 @@ TEST_F(WrenchTableTest, AStaleIdIsCaught) {
   const BodyId rod = Id(1);
   table_.RemoveBody(rod);
   store_.Remove(rod);
-  const BodyId reused = store_.Add(test::RodBody(), {}, {});
+  const BodyId reused = store_.Add(BodyDef{test::RodBody()});
   ASSERT_EQ(reused.slot, rod.slot);  // the slot is reused, under a new generation
   EXPECT_NE(reused, rod);
   EXPECT_FALSE(store_.IndexOf(rod).has_value());

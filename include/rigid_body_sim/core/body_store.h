@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <vector>
 
+#include "rigid_body_sim/core/body_def.h"
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_id.h"
 #include "rigid_body_sim/core/body_model.h"
@@ -48,6 +49,7 @@ struct BodyColdColumns {
   std::vector<BodyId> ids;
   std::vector<BodyState> initial_states;  // what Reset brings each body back to
   std::vector<BodyProperties> properties;
+  std::vector<BodyFrames> frames;
   // Filled only when a step is recorded (World::RecordNextStep), so they may
   // be shorter than the other columns.
   std::vector<StepRecord> step_records;
@@ -55,8 +57,14 @@ struct BodyColdColumns {
 
   template <typename F>
   void ForEach(F&& f) {
-    f(ids), f(initial_states), f(properties), f(step_records), f(step_record_valid);
+    f(ids), f(initial_states), f(properties), f(frames), f(step_records), f(step_record_valid);
   }
+};
+
+// A site: its body and its index among the body's sites.
+struct SiteRef {
+  BodyId body;
+  std::size_t site = 0;
 };
 
 class BodyStore {
@@ -64,7 +72,7 @@ class BodyStore {
   std::size_t size() const { return hot_.models.size(); }
 
   // Appends a body (unchecked: the World checks it first) and returns its id.
-  BodyId Add(BodyModel model, const BodyState& initial_state, const BodyProperties& properties);
+  BodyId Add(BodyDef def);
   // Removes `id`'s body; the bodies after it move down by one. Throws
   // std::out_of_range for a stale id.
   void Remove(BodyId id);
@@ -76,6 +84,8 @@ class BodyStore {
   BodyId id(std::size_t index) const { return cold_.ids[index]; }
   // The body named `name`, if one lives.
   std::optional<BodyId> Find(const std::string& name) const;
+  // The site named `name` (BodyFrames::sites), if one lives.
+  std::optional<SiteRef> FindSite(const std::string& name) const;
 
   BodyHotColumns& hot() { return hot_; }
   const BodyHotColumns& hot() const { return hot_; }
@@ -94,6 +104,7 @@ class BodyStore {
   std::vector<Slot> slots_;
   std::vector<std::uint32_t> free_slots_;
   std::unordered_map<std::string, BodyId> by_name_;
+  std::unordered_map<std::string, SiteRef> sites_by_name_;
 };
 
 }  // namespace rigid_body_sim::core

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -68,15 +69,25 @@ void CheckBodyName(const std::string& name, std::size_t index);
 // number >= 0 [1/s], got -1").
 void CheckBodyProperties(const BodyProperties& properties);
 
+// Who already has a frame name in a world: body `index` (its name) or one of
+// its sites.
+struct NameTaker {
+  std::size_t index = 0;
+  bool is_site = false;
+};
+// The taker of `name` among the bodies before the one checked, if any.
+using NameLookup = std::function<std::optional<NameTaker>(const std::string& name)>;
+
 // Body `index` of a world of `world`, stepped by `integrator` (made from
-// world.integrator), in this order: a name; one that no body before it has
-// (`name_owner`: the index of the body that has it, if one does); properties
-// that CheckBodyProperties accepts; an initial state that CheckState accepts
-// and that a step of the world takes within world.max_substeps (a new body
-// holds no wrench), else "initial state is spin_aliased".
+// world.integrator), in this order: a name; one that no body or site before
+// it has (`taken`: who has a name; a site may share its own body's name);
+// sites with names, unique among the body's own sites and free in `taken`;
+// properties that CheckBodyProperties accepts; an initial state that
+// CheckState accepts and that a step of the world takes within
+// world.max_substeps (a new body holds no wrench), else "initial state is
+// spin_aliased".
 void CheckBodyDef(const BodyDef& def, std::size_t index, const WorldDef& world,
-                  const Integrator& integrator,
-                  std::optional<std::size_t> name_owner = std::nullopt);
+                  const Integrator& integrator, const NameLookup& taken = {});
 
 // Every body of a scene as a World of `world` built from them checks them,
 // names unique across all, without building one (a shard checks the whole

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "rigid_body_sim/core/body_def.h"
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_id.h"
 #include "rigid_body_sim/core/body_model.h"
@@ -44,10 +45,11 @@ class World {
   // Throws std::invalid_argument on `options` that CheckWorldDef rejects
   // (validate.h: the setters' checks among them), a states/models (or
   // non-empty properties) size mismatch, or a body that CheckBodyDef rejects
-  // ("bodies[i] (name 'n'): ..."). Empty `properties` gives every body the
-  // defaults.
+  // ("bodies[i] (name 'n'): ..."). Empty `properties` or `frames` gives every
+  // body the defaults.
   World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
-        const WorldOptions& options, std::vector<BodyProperties> properties = {});
+        const WorldOptions& options, std::vector<BodyProperties> properties = {},
+        std::vector<BodyFrames> frames = {});
 
   // Bodies are read by index (scene order; an index moves down when a body
   // before it is removed) or by BodyId (stable; a stale id throws
@@ -61,7 +63,11 @@ class World {
   const BodyProperties& properties(std::size_t index) const {
     return bodies_.cold().properties[index];
   }
+  const BodyFrames& frames(std::size_t index) const { return bodies_.cold().frames[index]; }
+  // The site named `name` (without tf_prefix), if one lives.
+  std::optional<SiteRef> FindSite(const std::string& name) const { return bodies_.FindSite(name); }
   const BodyModel& model(BodyId id) const { return model(bodies_.CheckedIndex(id)); }
+  const BodyFrames& frames(BodyId id) const { return frames(bodies_.CheckedIndex(id)); }
   const BodyState& state(BodyId id) const { return state(bodies_.CheckedIndex(id)); }
   const std::vector<BodyModel>& models() const { return bodies_.hot().models; }
   const std::vector<BodyState>& states() const { return bodies_.hot().states; }
@@ -96,7 +102,10 @@ class World {
   // std::invalid_argument, naming the entry as "bodies[size()] (name 'n')", on
   // the constructor's checks; the world is unchanged then. Tells every
   // listener after the body is in.
-  BodyId AddBody(BodyModel model, const BodyState& initial_state, const BodyProperties& properties);
+  BodyId AddBody(BodyDef def);
+  BodyId AddBody(BodyModel model, const BodyState& initial_state, const BodyProperties& properties) {
+    return AddBody(BodyDef{std::move(model), initial_state, properties});
+  }
   // Removes the body and its wrenches; the bodies after it move down by one.
   // Tells every listener after it is gone.
   void RemoveBody(BodyId id);
@@ -184,10 +193,10 @@ class World {
   // is frozen).
   void FinishStep(std::size_t index, const BodyState& before, Share* share);
   void Freeze(std::size_t index, BodyFault fault, Share* share);
-  // The checks of a body that would be bodies[index]: a name no other body
-  // has, its properties and its initial state; throws std::invalid_argument.
-  void CheckBody(std::size_t index, const BodyModel& model, const BodyState& initial_state,
-                 const BodyProperties& properties) const;
+  // The checks of a body that would be bodies[index]: names no other body or
+  // site has, its properties and its initial state; throws
+  // std::invalid_argument.
+  void CheckBody(std::size_t index, const BodyDef& def) const;
   // Body `index`'s per-body constants: torque projector, damping, one-step bound.
   void PrepareBody(std::size_t index);
   std::uint32_t SubstepsFor(const BodyModel& model, const HeldLoads* load,

@@ -9,18 +9,20 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include "rigid_body_sim/core/body_def.h"
+#include "rigid_body_sim/core/body_frames.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_properties.h"
 #include "rigid_body_sim/core/body_state.h"
 
 namespace rigid_body_sim {
 
-// The bodies of a scene, in its order: one model, initial state and set of
-// properties each (the columns a core::World is built from).
+// The bodies of a scene, in its order: one model, initial state, set of
+// properties and set of frames each (the columns a core::World is built from).
 struct SceneBodies {
   std::vector<core::BodyModel> models;
   std::vector<core::BodyState> initial_states;
   std::vector<core::BodyProperties> properties;
+  std::vector<core::BodyFrames> frames;
 };
 
 // The most bodies a scene, with the ones spawned later, may have: a bound

@@ -1,0 +1,77 @@
+// The named frames of a body besides its COM frame: which point its published
+// frame is, the sites fixed in it, and the names a robot description gives it
+// (doc/node.md, "Sites and frames"). Cold data: read by the outputs and by
+// wrench intake, never by a step.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_state.h"
+
+namespace rigid_body_sim::core {
+
+// A named frame fixed in a body, in its reference coordinates: the origin
+// [m] and R_RS, the site's axes in reference (= body) axes.
+struct Site {
+  std::string name;
+  Eigen::Vector3d position_m = Eigen::Vector3d::Zero();
+  Eigen::Quaterniond orientation = Eigen::Quaterniond::Identity();
+};
+
+// The origin of the frame a body's TF, pose, odometry, IMU and applied wrench
+// refer to: the COM, or the origin of its reference coordinates. The axes
+// are the body axes either way.
+enum class FrameOrigin { kCom, kReference };
+
+struct BodyFrames {
+  FrameOrigin origin = FrameOrigin::kCom;
+  // The TF frame's name before tf_prefix; "" is the body's name. A URDF body's
+  // is its root link's.
+  std::string tf_frame;
+  std::vector<Site> sites;
+  // Whether the node puts the sites on /tf_static (a URDF body's links are
+  // robot_state_publisher's to broadcast).
+  bool broadcast_sites = true;
+  // Joints held at position 0 inside the body (a URDF body's non-fixed
+  // joints), published so that robot_state_publisher draws its links.
+  std::vector<std::string> held_joints;
+};
+
+// The TF frame name of a body named `body_name` (before tf_prefix).
+inline const std::string& TfFrameName(const BodyFrames& frames, const std::string& body_name) {
+  return frames.tf_frame.empty() ? body_name : frames.tf_frame;
+}
+
+// The point a body's frame origin is at, as an offset from the COM in body
+// axes [m]: 0 for kCom, −x̄_CM for kReference.
+Eigen::Vector3d FrameOriginOffset(const BodyModel& model, FrameOrigin origin);
+
+// A point fixed in the body, given in reference coordinates [m], as an offset
+// from the COM in body axes [m]: x̄ − x̄_CM.
+inline Eigen::Vector3d BodyOffset(const BodyModel& model, const Eigen::Vector3d& reference_m) {
+  return reference_m - model.reference_com();
+}
+
+// Where the point at `offset_B` (from the COM, body axes [m]) is and how fast
+// it moves, in world coordinates: x + R_WB r, v + ω × R_WB r.
+struct PointMotion {
+  Eigen::Vector3d position_m;
+  Eigen::Vector3d velocity_mps;
+};
+PointMotion MotionOfPoint(const BodyModel& model, const BodyState& state,
+                          const Eigen::Vector3d& offset_B);
+
+// The COM's position and velocity of a body whose point at `offset_B` is at
+// `position_m` and moves at `velocity_mps` while it turns at ω_W in the
+// orientation `orientation` (the inverse of MotionOfPoint, for initial states
+// given at the reference origin).
+PointMotion ComMotion(const Eigen::Quaterniond& orientation, const Eigen::Vector3d& omega_W,
+                      const Eigen::Vector3d& offset_B, const Eigen::Vector3d& position_m,
+                      const Eigen::Vector3d& velocity_mps);
+
+}  // namespace rigid_body_sim::core

@@ -1,0 +1,26 @@
+#include "rigid_body_sim/core/body_frames.h"
+
+#include "rigid_body_sim/core/kinematics.h"
+
+namespace rigid_body_sim::core {
+
+Eigen::Vector3d FrameOriginOffset(const BodyModel& model, FrameOrigin origin) {
+  return origin == FrameOrigin::kReference ? Eigen::Vector3d(-model.reference_com())
+                                           : Eigen::Vector3d::Zero();
+}
+
+PointMotion MotionOfPoint(const BodyModel& model, const BodyState& state,
+                          const Eigen::Vector3d& offset_B) {
+  const Eigen::Vector3d offset_W = state.orientation * offset_B;
+  return {state.position + offset_W,
+          LinearVelocity(model, state) + AngularVelocity(model, state).cross(offset_W)};
+}
+
+PointMotion ComMotion(const Eigen::Quaterniond& orientation, const Eigen::Vector3d& omega_W,
+                      const Eigen::Vector3d& offset_B, const Eigen::Vector3d& position_m,
+                      const Eigen::Vector3d& velocity_mps) {
+  const Eigen::Vector3d offset_W = orientation * offset_B;
+  return {position_m - offset_W, velocity_mps - omega_W.cross(offset_W)};
+}
+
+}  // namespace rigid_body_sim::core
