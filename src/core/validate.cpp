@@ -136,8 +136,8 @@ void CheckBodyProperties(const BodyProperties& properties) {
 namespace {
 
 std::string TakerName(const NameTaker& taker) {
-  return std::string(taker.is_site ? "a site of " : "") + "bodies[" +
-         std::to_string(taker.index) + "]";
+  return std::string(taker.is_site ? "a site of " : "") + "bodies[" + std::to_string(taker.index) +
+         "]";
 }
 
 }  // namespace
@@ -151,21 +151,20 @@ void CheckBodyDef(const BodyDef& def, std::size_t index, const WorldDef& world,
     return taken ? taken(frame) : std::optional<NameTaker>();
   };
   if (const std::optional<NameTaker> owner = taker(name)) {
-    RBS_CHECK(owner->index == index,
-              Entry(index, name) + ": name duplicates " + TakerName(*owner));
+    RBS_CHECK(owner->index == index, Entry(index, name) + ": name duplicates " + TakerName(*owner));
   }
   const std::vector<Site>& sites = def.frames.sites;
   for (std::size_t k = 0; k < sites.size(); ++k) {
     const std::string site = Entry(index, name) + ": sites[" + std::to_string(k) + "]";
     RBS_CHECK(!sites[k].name.empty(), site + ": name must not be empty");
     for (std::size_t j = 0; j < k; ++j) {
-      RBS_CHECK(sites[j].name != sites[k].name, site + ": name '" + sites[k].name +
-                                                    "' duplicates sites[" + std::to_string(j) +
-                                                    "]");
+      RBS_CHECK(
+          sites[j].name != sites[k].name,
+          site + ": name '" + sites[k].name + "' duplicates sites[" + std::to_string(j) + "]");
     }
     if (const std::optional<NameTaker> owner = taker(sites[k].name)) {
-      RBS_CHECK(owner->index == index, site + ": name '" + sites[k].name + "' duplicates " +
-                                           TakerName(*owner));
+      RBS_CHECK(owner->index == index,
+                site + ": name '" + sites[k].name + "' duplicates " + TakerName(*owner));
     }
   }
   const std::string properties_error = PropertiesError(def.properties);

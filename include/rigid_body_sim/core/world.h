@@ -103,7 +103,8 @@ class World {
   // the constructor's checks; the world is unchanged then. Tells every
   // listener after the body is in.
   BodyId AddBody(BodyDef def);
-  BodyId AddBody(BodyModel model, const BodyState& initial_state, const BodyProperties& properties) {
+  BodyId AddBody(BodyModel model, const BodyState& initial_state,
+                 const BodyProperties& properties) {
     return AddBody(BodyDef{std::move(model), initial_state, properties});
   }
   // Removes the body and its wrenches; the bodies after it move down by one.
