@@ -211,7 +211,7 @@ void World::RecordStepStart() {
     const BodyState& state = hot.states[i];
     const BodyProperties& properties = cold.properties[i];
     StepRecord& record = cold.step_records[i];
-    record.start_velocity_mps = hot.models[i].inverse_mass() * state.linear_momentum;
+    record.start_velocity_mps = FrameOriginVelocity(hot.models[i], state, cold.frames[i].origin);
     record.wrench =
         hot.loaded[i] ? hot.loads[i].At(0.0, state.orientation.toRotationMatrix()) : Wrench{};
     record.wrench.force -= properties.linear_damping_per_s * state.linear_momentum;
