@@ -62,7 +62,9 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
 
 void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
   const std::string& name = world.model(id).name();
-  per_body_.Insert(id, {BodyFrameId(tf_prefix_, name), next_marker_id_++});
+  const core::BodyFrames& frames = world.frames(id);
+  per_body_.Insert(id, {{BodyFrameId(tf_prefix_, core::TfFrameName(frames, name)), frames.origin},
+                        next_marker_id_++});
   body_topics_.Add(id, name);
 }
 
@@ -91,8 +93,10 @@ void StatePublisher::PublishTf(const core::World& world, const ros::Time& stamp)
   for (std::size_t body = 0; body < world.size(); ++body) {
     tf.transforms[body].header.stamp = stamp;
     tf.transforms[body].header.frame_id = world_frame_;
-    tf.transforms[body].child_frame_id = per_body_.at(world.id(body)).child_frame;
-    tf.transforms[body].transform = ToTransformMsg(world.state(body));
+    const BodyFrame& frame = per_body_.at(world.id(body)).frame;
+    tf.transforms[body].child_frame_id = frame.frame_id;
+    tf.transforms[body].transform =
+        ToFrameTransformMsg(world.model(body), world.state(body), frame.origin);
   }
   tf_.publisher.publish(tf);
 }
@@ -102,12 +106,12 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
     const core::BodyId id = world.id(body);
     const BodyTopics::Topics* topics = body_topics_.at(id);
     if (topics == nullptr) continue;  // not yet advertised
-    const std::string& child_frame = per_body_.at(id).child_frame;
+    const BodyFrame& frame = per_body_.at(id).frame;
     if (topics->pose.wanted()) {
       geometry_msgs::PoseStamped pose;
       pose.header.stamp = stamp;
       pose.header.frame_id = world_frame_;
-      pose.pose = ToPoseMsg(world.state(body));
+      pose.pose = ToFramePoseMsg(world.model(body), world.state(body), frame.origin);
       topics->pose.publisher.publish(pose);
     }
     if (topics->twist.wanted()) {
@@ -119,7 +123,7 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
     }
     if (topics->odom.wanted()) {
       topics->odom.publisher.publish(
-          ToOdometryMsg(world.model(body), world.state(body), world_frame_, child_frame, stamp));
+          ToOdometryMsg(world.model(body), world.state(body), world_frame_, frame, stamp));
     }
     const core::StepRecord* record = world.last_step_record(body);
     if (record == nullptr) continue;  // no step since start, reset, spawn or set state
@@ -132,11 +136,11 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
       inputs.body = body;
       inputs.step = world.step_count();
       topics->imu.publisher.publish(
-          ToImuMsg(world.model(body), world.state(body), inputs, imu_noise_, child_frame, stamp));
+          ToImuMsg(world.model(body), world.state(body), inputs, imu_noise_, frame, stamp));
     }
     if (topics->applied_wrench.wanted()) {
       topics->applied_wrench.publisher.publish(
-          ToAppliedWrenchMsg(world.state(body), record->wrench, child_frame, stamp));
+          ToAppliedWrenchMsg(world.model(body), world.state(body), record->wrench, frame, stamp));
     }
   }
 }

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_outputs.h"
 #include "rigid_body_sim/ros/body_topics.h"
 #include "rigid_body_sim/ros/scene_params.h"
 
@@ -56,7 +57,7 @@ class StatePublisher : public core::BodyListener {
   const std::string tf_prefix_;
   const core::ImuNoise imu_noise_;
   struct PerBody {
-    std::string child_frame;  // its TF frame
+    BodyFrame frame;  // its TF frame and origin
     // Its ~particles marker id: its scene index, then one more per spawn, so
     // that a delete does not renumber the others in rviz.
     int marker_id = 0;
