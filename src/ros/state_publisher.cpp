@@ -51,7 +51,8 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
       particle_marker_diameter_m_(settings.particle_marker_diameter_m),
       tf_prefix_(settings.tf_prefix),
       imu_noise_(settings.imu_noise),
-      body_topics_(private_nh, settings.per_body_topics, std::move(on_body_wrench)) {
+      body_topics_(private_nh, settings.per_body_topics, std::move(on_body_wrench)),
+      joint_states_(private_nh) {
   ros::NodeHandle root;
   Advertise<tf2_msgs::TFMessage>(root, "/tf", kTfQueueSize, &tf_);
   Advertise<BodyStateArray>(private_nh, "bodies", kStateQueueSize, &bodies_);
@@ -66,12 +67,14 @@ void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
   per_body_.Insert(id, {{BodyFrameId(tf_prefix_, core::TfFrameName(frames, name)), frames.origin},
                         next_marker_id_++});
   body_topics_.Add(id, name);
+  joint_states_.OnBodyAdded(world, id);
 }
 
 void StatePublisher::OnBodyRemoved(const core::World& /*world*/, core::BodyId id) {
   deleted_marker_ids_.push_back(per_body_.at(id).marker_id);
   per_body_.Erase(id);
   body_topics_.Remove(id);
+  joint_states_.OnBodyRemoved(id);
 }
 
 void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
@@ -84,6 +87,7 @@ void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
   PublishBodyTopics(world, stamp);
   if (bodies_.subscribers > 0) PublishBodies(world, stamp);
   if (particles_.subscribers > 0) PublishParticles(world, stamp);
+  joint_states_.Publish(stamp);
   deleted_marker_ids_.clear();
 }
 
