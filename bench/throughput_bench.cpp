@@ -20,15 +20,26 @@ namespace {
 // Eight particles at the corners of a 0.2 × 0.3 × 0.4 m box, as a node scene
 // would have them, tumbling near the separatrix.
 enum class Motion { kTumbling, kAtRest };
+// The box; a cube of 0.3 m (isotropic); the box given by its mass, COM and Ī
+// (an `inertial` body, no particles).
+enum class Body { kBox, kCube, kInertialBox };
+
+BodyModel MakeBody(const std::string& name, Body body) {
+  const Eigen::Vector3d size =
+      body == Body::kCube ? Eigen::Vector3d(0.3, 0.3, 0.3) : Eigen::Vector3d(0.2, 0.3, 0.4);
+  BodyModel box(name, MakeBox(1.0, size, 2));
+  if (body != Body::kInertialBox) return box;
+  return BodyModel(name, box.mass(), box.reference_com(), box.inertia());
+}
 
 World MakeWorld(const std::string& integrator, int bodies, bool forced,
-                Motion motion = Motion::kTumbling, bool cubes = false, std::size_t threads = 1) {
+                Motion motion = Motion::kTumbling, Body body = Body::kBox,
+                std::size_t threads = 1) {
   std::vector<BodyModel> models;
   std::vector<BodyState> states(bodies);
   models.reserve(bodies);
-  const Eigen::Vector3d size = cubes ? Eigen::Vector3d(0.3, 0.3, 0.3) : Eigen::Vector3d(0.2, 0.3, 0.4);
   for (int i = 0; i < bodies; ++i) {
-    models.emplace_back("body" + std::to_string(i), MakeBox(1.0, size, 2));
+    models.emplace_back(MakeBody("body" + std::to_string(i), body));
     states[i].position = {0.01 * i, 0.0, 0.0};
     if (motion == Motion::kTumbling) states[i].angular_momentum = {0.001, 0.02, 0.001};
   }
@@ -96,11 +107,21 @@ BENCHMARK(BM_WorldStepAtRest)->Arg(1000);
 
 void BM_WorldStepCubes(benchmark::State& state) {
   const int bodies = static_cast<int>(state.range(0));
-  World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, true);
+  World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, Body::kCube);
   for (auto _ : state) world.Step();
   ReportPerBodyStep(bodies, &state);
 }
 BENCHMARK(BM_WorldStepCubes)->Arg(1000);
+
+// The box as an `inertial` body, against the default scheme's BM_WorldStep/.../free of the same
+// run: a step reads only the mass and the principal frame, so it costs the same.
+void BM_WorldStepInertial(benchmark::State& state) {
+  const int bodies = static_cast<int>(state.range(0));
+  World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, Body::kInertialBox);
+  TimeSteps(&world, &state);
+  ReportPerBodyStep(bodies, &state);
+}
+BENCHMARK(BM_WorldStepInertial)->Arg(1000);
 
 // Particle positions for every body, as the node's ~particles output needs.
 void BM_ParticlePositions(benchmark::State& state) {
@@ -160,7 +181,7 @@ BENCHMARK_CAPTURE(BM_WorldStepLoaded, gravity, LoadKind::kGravity)->Arg(1000);
 void BM_WorldStepThreads(benchmark::State& state, bool forced) {
   const int bodies = static_cast<int>(state.range(0));
   const auto threads = static_cast<std::size_t>(state.range(1));
-  World world = MakeWorld(kDefaultIntegrator, bodies, forced, Motion::kTumbling, false, threads);
+  World world = MakeWorld(kDefaultIntegrator, bodies, forced, Motion::kTumbling, Body::kBox, threads);
   TimeSteps(&world, &state);
   ReportPerBodyStep(bodies, &state);
 }
@@ -176,7 +197,7 @@ BENCHMARK_CAPTURE(BM_WorldStepThreads, forced, true)
 // StateHashWorker does off that thread), per body.
 void BM_StateHashCopy(benchmark::State& state) {
   const int bodies = static_cast<int>(state.range(0));
-  const World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, false, 1);
+  const World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, Body::kBox, 1);
   std::vector<double> values;
   for (auto _ : state) {
     StateHashValues(world, &values);
@@ -188,7 +209,7 @@ BENCHMARK(BM_StateHashCopy)->Arg(10000);
 
 void BM_StateHashFnv(benchmark::State& state) {
   const int bodies = static_cast<int>(state.range(0));
-  const World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, false, 1);
+  const World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, Body::kBox, 1);
   std::vector<double> values;
   StateHashValues(world, &values);
   for (auto _ : state) benchmark::DoNotOptimize(HashOfValues(values));

@@ -21,3 +21,7 @@ add_dependencies(wrench_flood ${${PROJECT_NAME}_EXPORTED_TARGETS})
 
 # The machine's wake-up jitter, the floor under the node's overruns (bench/node_load.py).
 add_executable(wake_jitter bench/wake_jitter.cpp)
+
+# A robot description of N links loaded as one body.
+add_executable(urdf_load_bench bench/urdf_load_bench.cpp)
+target_link_libraries(urdf_load_bench rigid_body_sim_ros benchmark::benchmark)

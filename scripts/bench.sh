@@ -42,6 +42,9 @@ echo "== throughput (Google Benchmark) =="
 "$bin/throughput_bench" --benchmark_repetitions=$repetitions --benchmark_min_time=0.2 \
   --benchmark_report_aggregates_only=true \
   --benchmark_out="$results/throughput.json" --benchmark_out_format=json
+echo "== a URDF of N links loaded as one body =="
+"$bin/urdf_load_bench" --benchmark_repetitions=$repetitions --benchmark_report_aggregates_only=true \
+  --benchmark_out="$results/urdf_load.json" --benchmark_out_format=json
 echo "== the node under load =="
 /usr/bin/python3 bench/node_load.py --workspace "$ws" $quick --out "$results"
 echo "results in $results"
