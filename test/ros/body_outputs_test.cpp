@@ -205,7 +205,9 @@ TEST(BodyOutputs, AReferenceFramesPoseAndOdometryAreThoseOfItsOrigin) {
   EXPECT_VECTOR_NEAR(transform.translation, 1.0, 1.7, 3.0, kRotationRoundOff);
   EXPECT_EQ(transform.rotation, pose.orientation);
   EXPECT_EQ(ToFramePoseMsg(body, state, core::FrameOrigin::kCom), ToPoseMsg(state));
-  EXPECT_EQ(ToFrameTransformMsg(body, state, core::FrameOrigin::kCom), ToTransformMsg(state));
+  const geometry_msgs::Transform at_com = ToFrameTransformMsg(body, state, core::FrameOrigin::kCom);
+  EXPECT_EQ(at_com.translation, ToVector3Msg(state.position));
+  EXPECT_EQ(at_com.rotation, transform.rotation);
 
   const nav_msgs::Odometry msg = ToOdometryMsg(body, state, "world", kReferenceFrame, kStamp);
   EXPECT_EQ(msg.child_frame_id, "sim/offset_cube");
