@@ -131,6 +131,7 @@ void World::Step() {
       if (properties[i].has_damping()) hot.loaded[i] = 1;
     }
   }
+  if (integrator_->continues_free_flows()) hot.free_flows.resize(size());
   last_step_recorded_ = record_next_step_;
   record_next_step_ = false;
   if (last_step_recorded_) RecordStepStart();
@@ -221,7 +222,9 @@ void World::RecordStepStart() {
 
 BodyBatch World::Batch(const std::vector<std::size_t>& indices) {
   BodyHotColumns& hot = bodies_.hot();
-  return {hot.models.data(), hot.loads.data(), hot.states.data(), indices.data(), indices.size()};
+  ExactFreeFlow* free_flows = hot.free_flows.empty() ? nullptr : hot.free_flows.data();
+  return {hot.models.data(), hot.loads.data(), hot.states.data(),
+          indices.data(),    indices.size(),   free_flows};
 }
 
 void World::StepLoadedBatch(Share* share) {
@@ -308,6 +311,7 @@ void World::SetWrenchTimeout(double timeout_s) {
 void World::SetIntegrator(const std::string& name) {
   integrator_ = MakeIntegrator(name);
   options_.integrator = name;
+  bodies_.hot().free_flows.clear();  // kept for exact_free alone
 }
 
 }  // namespace rigid_body_sim::core
