@@ -38,6 +38,54 @@ bool SameBits(const T& a, const T& b) {
   return std::memcmp(&a, &b, sizeof(T)) == 0;
 }
 
+using Pair = ExactFreeFlow::Pair;
+
+// a + b exactly, as a pair.
+Pair TwoSum(double a, double b) {
+  const double s = a + b;
+  const double v = s - a;
+  return {s, (a - (s - v)) + (b - v)};
+}
+
+// a b exactly, as a pair.
+Pair TwoProduct(double a, double b) {
+  const double p = a * b;
+  return {p, std::fma(a, b, -p)};
+}
+
+// hi + lo again with |lo| <= ulp(hi)/2, hi the rounded sum.
+Pair Normalized(double hi, double lo) {
+  const double sum = hi + lo;
+  return {sum, lo - (sum - hi)};
+}
+
+// a + b, to ~ε² |a + b| when they do not cancel, to ~ε² (|a| + |b|) always.
+Pair Sum(const Pair& a, const Pair& b) {
+  const Pair s = TwoSum(a.hi, b.hi);
+  return Normalized(s.hi, s.lo + a.lo + b.lo);
+}
+
+Pair Product(const Pair& a, const Pair& b) {
+  const Pair p = TwoProduct(a.hi, b.hi);
+  return Normalized(p.hi, p.lo + (a.hi * b.lo + a.lo * b.hi));
+}
+
+Pair Quotient(const Pair& a, double b) {
+  const double q = a.hi / b;
+  const Pair qb = TwoProduct(q, b);
+  return Normalized(q, ((a.hi - qb.hi) - qb.lo + a.lo) / b);
+}
+
+// a less the whole multiples of `period` that bring it into [−period/2, period/2].
+Pair Reduced(const Pair& a, const Pair& period) {
+  const double periods = std::nearbyint(a.hi / period.hi);
+  const Pair whole = TwoProduct(periods, period.hi);
+  return Sum(a, {-whole.hi, -std::fma(periods, period.lo, whole.lo)});
+}
+
+// 2π as a pair: turns of the precession are taken off without rounding 2π.
+constexpr Pair kTwoPi = {2.0 * M_PI, 2.4492935982947064e-16};
+
 }  // namespace
 
 TorqueFreeMotion MotionFrom(const BodyModel& model, const BodyState& state) {
@@ -60,16 +108,34 @@ Eigen::Quaterniond ExactFreeFlow::Advance(const BodyModel& model, const BodyStat
       return (motion.Orientation(dt_s) * model.principal_axes().conjugate()).normalized();
     }
   }
-  phase_ += rate_ * dt_s;
-  const double half_period = 0.5 * period_;
-  if (!(phase_ >= -half_period && phase_ < half_period)) {
-    const double periods = std::floor((phase_ + half_period) / period_);
-    phase_ -= periods * period_;
-    precession_offset_ =
-        std::remainder(precession_offset_ + periods * period_precession_, 2.0 * M_PI);
+  if (!(dt_s == step_dt_s_)) SetStep(dt_s);
+  // Both stay within a period of 0 (each step is reduced into ±half a period),
+  // so one turn back keeps them there.
+  phase_ = Sum(phase_, phase_step_);
+  if (phase_.hi >= 0.5 * period_) {
+    phase_ = Sum(phase_, {-period_, 0.0});
+  } else if (phase_.hi < -0.5 * period_) {
+    phase_ = Sum(phase_, {period_, 0.0});
   }
-  orientation_ = OrientationAt(phase_);
+  precession_ = Sum(precession_, precession_step_);
+  if (precession_.hi >= M_PI) {
+    precession_ = Sum(precession_, {-kTwoPi.hi, -kTwoPi.lo});
+  } else if (precession_.hi < -M_PI) {
+    precession_ = Sum(precession_, kTwoPi);
+  }
+  orientation_ = OrientationAt(phase_.hi);
   return orientation_;
+}
+
+void ExactFreeFlow::SetStep(double dt_s) {
+  // νh and ψ̇0 h + gain Π(n, k)/K · νh to ~ε² of themselves, so that N steps
+  // add N ε² rather than N ε to the phase and the precession.
+  const Pair phase_step = TwoProduct(rate_, dt_s);
+  phase_step_ = Reduced(phase_step, {period_, 0.0});
+  precession_step_ = Reduced(
+      Sum(TwoProduct(precession_rate_per_s_, dt_s), Product(precession_per_phase_, phase_step)),
+      kTwoPi);
+  step_dt_s_ = dt_s;
 }
 
 bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& model,
@@ -127,11 +193,10 @@ bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& mod
   period_ = 4.0 * quarter_period;
   angle_per_phase_ = M_PI / (2.0 * quarter_period);
   const double twist_gain = t / (secant * std::sqrt(1.0 - n));  // S
-  precession_per_phase_ =
-      elliptic->precession_rate_per_s / rate_ +
-      elliptic->precession_gain * elliptic->complete_third_kind / quarter_period;
+  precession_rate_per_s_ = elliptic->precession_rate_per_s;
+  precession_per_phase_ = Quotient(
+      TwoProduct(elliptic->precession_gain, elliptic->complete_third_kind), quarter_period);
   precession_per_twist_ = elliptic->precession_gain * twist_gain;
-  period_precession_ = std::remainder(precession_per_phase_ * period_, 2.0 * M_PI);
   cn_axis_ = elliptic->cn_axis;
   amplitudes_ = elliptic->amplitudes;
   alignment_ = elliptic->alignment;
@@ -141,11 +206,10 @@ bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& mod
                    model.principal_axes().conjugate();
 
   // ψ(u0) = 0.
-  phase_ = elliptic->phase_start;
-  if (phase_ >= 0.5 * period_) phase_ -= period_;
-  precession_offset_ = std::remainder(
-      -(precession_per_phase_ * phase_ + precession_per_twist_ * PhaseAt(phase_).twist),
-      2.0 * M_PI);
+  phase_ = Reduced({elliptic->phase_start, 0.0}, {period_, 0.0});
+  precession_ = {0.0, 0.0};
+  precession_offset_ = -precession_per_twist_ * PhaseAt(phase_.hi).twist;
+  step_dt_s_ = std::numeric_limits<double>::quiet_NaN();
 
   momentum_world_ = state.angular_momentum;
   principal_moments_ = model.principal_moments();
@@ -209,7 +273,7 @@ Eigen::Quaterniond ExactFreeFlow::OrientationAt(double u) const {
   const double tilt_z = -cos_theta * sin_phi;
   // ⊗ on the left by the precession Rz(ψ).
   const double half_precession =
-      0.5 * (precession_offset_ + precession_per_phase_ * u + precession_per_twist_ * phase.twist);
+      0.5 * (precession_.hi + (precession_offset_ + precession_per_twist_ * phase.twist));
   const double c = std::cos(half_precession);
   const double s = std::sin(half_precession);
   const Eigen::Quaterniond turn(c * tilt_w - s * tilt_z, c * tilt_x - s * tilt_y,
