@@ -38,6 +38,140 @@ bool SameBits(const T& a, const T& b) {
   return std::memcmp(&a, &b, sizeof(T)) == 0;
 }
 
+using Pair = ExactFreeFlow::Pair;
+
+// a + b exactly, as a pair.
+Pair TwoSum(double a, double b) {
+  const double s = a + b;
+  const double v = s - a;
+  return {s, (a - (s - v)) + (b - v)};
+}
+
+// a b exactly, as a pair.
+Pair TwoProduct(double a, double b) {
+  const double p = a * b;
+  return {p, std::fma(a, b, -p)};
+}
+
+// hi + lo again with |lo| <= ulp(hi)/2, hi the rounded sum.
+Pair Normalized(double hi, double lo) {
+  const double sum = hi + lo;
+  return {sum, lo - (sum - hi)};
+}
+
+// a + b, to ~ε² |a + b| when they do not cancel, to ~ε² (|a| + |b|) always.
+Pair Sum(const Pair& a, const Pair& b) {
+  const Pair s = TwoSum(a.hi, b.hi);
+  return Normalized(s.hi, s.lo + a.lo + b.lo);
+}
+
+Pair Product(const Pair& a, const Pair& b) {
+  const Pair p = TwoProduct(a.hi, b.hi);
+  return Normalized(p.hi, p.lo + (a.hi * b.lo + a.lo * b.hi));
+}
+
+Pair Quotient(const Pair& a, double b) {
+  const double q = a.hi / b;
+  const Pair qb = TwoProduct(q, b);
+  return Normalized(q, ((a.hi - qb.hi) - qb.lo + a.lo) / b);
+}
+
+// a less the whole multiples of `period` that bring it into [−period/2, period/2].
+Pair Reduced(const Pair& a, const Pair& period) {
+  const double periods = std::nearbyint(a.hi / period.hi);
+  const Pair whole = TwoProduct(periods, period.hi);
+  return Sum(a, {-whole.hi, -std::fma(periods, period.lo, whole.lo)});
+}
+
+// sin x and cos x for the flow's bounded angles (|x| <= a few π), to about
+// an ulp: x less the nearest multiple of π/2 (π/2 in two parts, the first of
+// 33 bits, so n π/2 comes off exactly), then fdlibm's kernels on |r| <= π/4.
+// glibc's sin and cos reduce any x and check for errno, twice per step.
+struct SineCosine {
+  double sin, cos;
+};
+SineCosine SinCos(double x) {
+  constexpr double kTwoOverPi = 6.36619772367581382433e-01;
+  constexpr double kHalfPiHead = 1.57079632673412561417e+00;
+  constexpr double kHalfPiTail = 6.07710050650619224932e-11;
+  const double n = std::nearbyint(x * kTwoOverPi);
+  const double r = (x - n * kHalfPiHead) - n * kHalfPiTail;
+  const double z = r * r;
+  const double sin_r =
+      r + r * z *
+              (-1.66666666666666324348e-01 +
+               z * (8.33333333332248946124e-03 +
+                    z * (-1.98412698298579493134e-04 +
+                         z * (2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 +
+                                                                z * 1.58969099521155010221e-10)))));
+  const double cos_r =
+      1.0 - 0.5 * z +
+      z * z *
+          (4.16666666666666019037e-02 +
+           z * (-1.38888888888741095749e-03 +
+                z * (2.48015872894767294178e-05 +
+                     z * (-2.75573143513906633035e-07 +
+                          z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
+  // x = r + nπ/2: quadrant n mod 4 turns (cos r, sin r) by nπ/2.
+  switch (static_cast<int>(n) & 3) {
+    case 0:
+      return {sin_r, cos_r};
+    case 1:
+      return {cos_r, -sin_r};
+    case 2:
+      return {-sin_r, -cos_r};
+    default:
+      return {-cos_r, sin_r};
+  }
+}
+
+// atan t to about an ulp: fdlibm's reduction to |t| <= 7/16 about the nearest
+// of atan ½, 1, 3/2, ∞ and its polynomial, without glibc's slow paths.
+double Atan(double t) {
+  constexpr double kAtanHead[] = {4.63647609000806093515e-01, 7.85398163397448278999e-01,
+                                  9.82793723247329054082e-01, 1.57079632679489655800e+00};
+  constexpr double kAtanTail[] = {2.26987774529616870924e-17, 3.06161699786838301793e-17,
+                                  1.39033110312309984516e-17, 6.12323399573676603587e-17};
+  const double a = std::abs(t);
+  int id;
+  double x;
+  if (a < 0.4375) {
+    id = -1;
+    x = a;
+  } else if (a < 0.6875) {
+    id = 0;
+    x = (2.0 * a - 1.0) / (2.0 + a);
+  } else if (a < 1.1875) {
+    id = 1;
+    x = (a - 1.0) / (a + 1.0);
+  } else if (a < 2.4375) {
+    id = 2;
+    x = (a - 1.5) / (1.0 + 1.5 * a);
+  } else {
+    id = 3;
+    x = -1.0 / a;
+  }
+  const double z = x * x;
+  const double w = z * z;
+  const double odd =
+      z * (3.33333333333329318027e-01 +
+           w * (1.42857142725034663711e-01 +
+                w * (9.09088713343650656196e-02 +
+                     w * (6.66107313738753120669e-02 +
+                          w * (4.97687799461593236017e-02 + w * 1.62858201153657823623e-02)))));
+  const double even =
+      w * (-1.99999999998764832476e-01 +
+           w * (-1.11111104054623557880e-01 +
+                w * (-7.69187620504482999495e-02 +
+                     w * (-5.83357013379057348645e-02 + w * -3.65315727442169155270e-02))));
+  const double result =
+      id < 0 ? x - x * (odd + even) : kAtanHead[id] - ((x * (odd + even) - kAtanTail[id]) - x);
+  return std::copysign(result, t);
+}
+
+// 2π as a pair: turns of the precession are taken off without rounding 2π.
+constexpr Pair kTwoPi = {2.0 * M_PI, 2.4492935982947064e-16};
+
 }  // namespace
 
 TorqueFreeMotion MotionFrom(const BodyModel& model, const BodyState& state) {
@@ -60,16 +194,34 @@ Eigen::Quaterniond ExactFreeFlow::Advance(const BodyModel& model, const BodyStat
       return (motion.Orientation(dt_s) * model.principal_axes().conjugate()).normalized();
     }
   }
-  phase_ += rate_ * dt_s;
-  const double half_period = 0.5 * period_;
-  if (!(phase_ >= -half_period && phase_ < half_period)) {
-    const double periods = std::floor((phase_ + half_period) / period_);
-    phase_ -= periods * period_;
-    precession_offset_ =
-        std::remainder(precession_offset_ + periods * period_precession_, 2.0 * M_PI);
+  if (!(dt_s == step_dt_s_)) SetStep(dt_s);
+  // Both stay within a period of 0 (each step is reduced into ±half a period),
+  // so one turn back keeps them there.
+  phase_ = Sum(phase_, phase_step_);
+  if (phase_.hi >= 0.5 * period_) {
+    phase_ = Sum(phase_, {-period_, 0.0});
+  } else if (phase_.hi < -0.5 * period_) {
+    phase_ = Sum(phase_, {period_, 0.0});
   }
-  orientation_ = OrientationAt(phase_);
+  precession_ = Sum(precession_, precession_step_);
+  if (precession_.hi >= M_PI) {
+    precession_ = Sum(precession_, {-kTwoPi.hi, -kTwoPi.lo});
+  } else if (precession_.hi < -M_PI) {
+    precession_ = Sum(precession_, kTwoPi);
+  }
+  orientation_ = OrientationAt(phase_.hi);
   return orientation_;
+}
+
+void ExactFreeFlow::SetStep(double dt_s) {
+  // νh and ψ̇0 h + gain Π(n, k)/K · νh to ~ε² of themselves, so that N steps
+  // add N ε² rather than N ε to the phase and the precession.
+  const Pair phase_step = TwoProduct(rate_, dt_s);
+  phase_step_ = Reduced(phase_step, {period_, 0.0});
+  precession_step_ = Reduced(
+      Sum(TwoProduct(precession_rate_per_s_, dt_s), Product(precession_per_phase_, phase_step)),
+      kTwoPi);
+  step_dt_s_ = dt_s;
 }
 
 bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& model,
@@ -127,11 +279,10 @@ bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& mod
   period_ = 4.0 * quarter_period;
   angle_per_phase_ = M_PI / (2.0 * quarter_period);
   const double twist_gain = t / (secant * std::sqrt(1.0 - n));  // S
-  precession_per_phase_ =
-      elliptic->precession_rate_per_s / rate_ +
-      elliptic->precession_gain * elliptic->complete_third_kind / quarter_period;
+  precession_rate_per_s_ = elliptic->precession_rate_per_s;
+  precession_per_phase_ = Quotient(
+      TwoProduct(elliptic->precession_gain, elliptic->complete_third_kind), quarter_period);
   precession_per_twist_ = elliptic->precession_gain * twist_gain;
-  period_precession_ = std::remainder(precession_per_phase_ * period_, 2.0 * M_PI);
   cn_axis_ = elliptic->cn_axis;
   amplitudes_ = elliptic->amplitudes;
   alignment_ = elliptic->alignment;
@@ -141,11 +292,10 @@ bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& mod
                    model.principal_axes().conjugate();
 
   // ψ(u0) = 0.
-  phase_ = elliptic->phase_start;
-  if (phase_ >= 0.5 * period_) phase_ -= period_;
-  precession_offset_ = std::remainder(
-      -(precession_per_phase_ * phase_ + precession_per_twist_ * PhaseAt(phase_).twist),
-      2.0 * M_PI);
+  phase_ = Reduced({elliptic->phase_start, 0.0}, {period_, 0.0});
+  precession_ = {0.0, 0.0};
+  precession_offset_ = -precession_per_twist_ * PhaseAt(phase_.hi).twist;
+  step_dt_s_ = std::numeric_limits<double>::quiet_NaN();
 
   momentum_world_ = state.angular_momentum;
   principal_moments_ = model.principal_moments();
@@ -155,9 +305,9 @@ bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& mod
 }
 
 ExactFreeFlow::Phase ExactFreeFlow::PhaseAt(double u) const {
-  const double x = angle_per_phase_ * u;
-  const double c = std::cos(x);
-  const double s = std::sin(x);
+  const SineCosine harmonic = SinCos(angle_per_phase_ * u);
+  const double c = harmonic.cos;
+  const double s = harmonic.sin;
   // The harmonics e^{i(2m+1)x}, e^{i(2m+2)x} by turning through e^{2ix}:
   // two independent chains.
   const double c2 = c * c - s * s;
@@ -183,7 +333,7 @@ ExactFreeFlow::Phase ExactFreeFlow::PhaseAt(double u) const {
   }
   const double inverse_theta4 = 1.0 / theta4;
   return {sn_scale_ * theta1 * inverse_theta4, cn_scale_ * theta2 * inverse_theta4,
-          dn_scale_ * theta3 * inverse_theta4, std::atan2(twist_imag, twist_real)};
+          dn_scale_ * theta3 * inverse_theta4, Atan(twist_imag / twist_real)};
 }
 
 Eigen::Quaterniond ExactFreeFlow::OrientationAt(double u) const {
@@ -209,9 +359,10 @@ Eigen::Quaterniond ExactFreeFlow::OrientationAt(double u) const {
   const double tilt_z = -cos_theta * sin_phi;
   // ⊗ on the left by the precession Rz(ψ).
   const double half_precession =
-      0.5 * (precession_offset_ + precession_per_phase_ * u + precession_per_twist_ * phase.twist);
-  const double c = std::cos(half_precession);
-  const double s = std::sin(half_precession);
+      0.5 * (precession_.hi + (precession_offset_ + precession_per_twist_ * phase.twist));
+  const SineCosine turn_half = SinCos(half_precession);
+  const double c = turn_half.cos;
+  const double s = turn_half.sin;
   const Eigen::Quaterniond turn(c * tilt_w - s * tilt_z, c * tilt_x - s * tilt_y,
                                 c * tilt_y + s * tilt_x, c * tilt_z + s * tilt_w);
   return (alignment_ * turn * frame_to_body_).normalized();

@@ -28,6 +28,11 @@ class ExactFreeFlow {
   // state itself says whether the phase still describes it.
   Eigen::Quaterniond Advance(const BodyModel& model, const BodyState& state, double dt_s);
 
+  // A real number carried as hi + lo, |lo| <= ulp(hi)/2.
+  struct Pair {
+    double hi, lo;
+  };
+
  private:
   // Enough for nomes q up to ~0.75 (k' down to ~1e-7); nearer the separatrix
   // each step rebuilds, as the uncached flow does.
@@ -42,6 +47,8 @@ class ExactFreeFlow {
     double sn, cn, dn, twist;
   };
   Phase PhaseAt(double u) const;
+  // The phase and precession gained over dt_s, reduced.
+  void SetStep(double dt_s);
   Eigen::Quaterniond OrientationAt(double u) const;
 
   // What the flow left: the body's state and its identity.
@@ -51,16 +58,23 @@ class ExactFreeFlow {
   Eigen::Vector3d principal_moments_;
   Eigen::Quaterniond principal_axes_;
 
-  // The phase: u reduced to [−2K, 2K) (sn, cn, dn have period 4K), and the
-  // precession offset modulo 2π, so a run of any length keeps full accuracy.
-  double phase_ = 0.0;                 // u
-  double precession_offset_ = 0.0;     // ψ = offset + a u + b arg θ4(x + iw)
-  double rate_ = 0.0;                  // ν [1/s]
-  double period_ = 0.0;                // 4K, in u
-  double period_precession_ = 0.0;     // ψ gained over one period 4K, modulo 2π
-  double precession_per_phase_ = 0.0;  // a
-  double precession_per_twist_ = 0.0;  // b
-  double angle_per_phase_ = 0.0;       // π/(2K): x = πu/(2K) is the theta functions' argument
+  // The phase u = νt + u0 reduced by 4K (sn, cn, dn have that period) and
+  // the precession's secular part aνt (a = ψ̇0/ν + gain Π(n, k)/K) reduced by
+  // 2π, each advanced by its step to ~ε² of it: N steps add N ε², so a run of
+  // any length keeps the accuracy of one evaluation.
+  // ψ = aνt + b arg θ4(x + iw) + offset.
+  Pair phase_{};                        // u, in [−2K, 2K]
+  Pair precession_{};                   // aνt, in [−π, π]
+  Pair phase_step_{};                   // νh modulo 4K
+  Pair precession_step_{};              // a νh modulo 2π
+  double step_dt_s_ = 0.0;              // h, that of the steps above
+  double precession_offset_ = 0.0;      // −b arg θ4 at u0
+  double rate_ = 0.0;                   // ν [1/s]
+  double period_ = 0.0;                 // 4K, in u
+  double precession_rate_per_s_ = 0.0;  // ψ̇0
+  Pair precession_per_phase_{};         // gain Π(n, k)/K; a = ψ̇0/ν + this
+  double precession_per_twist_ = 0.0;   // b
+  double angle_per_phase_ = 0.0;        // π/(2K): x = πu/(2K) is the theta functions' argument
 
   // sn = θ3θ1(x)/(θ2θ4(x)), cn = θ4θ2(x)/(θ2θ4(x)), dn = θ4θ3(x)/(θ3θ4(x)),
   // θ_i = θ_i(0); the series in the nome q = e^{−πK'/K} converge like q^{m²}.
