@@ -16,11 +16,15 @@ add_library(rigid_body_sim_ros
   src/ros/param_values.cpp
   src/ros/scene_settings.cpp
   src/ros/scene_bodies.cpp
+  src/ros/scene_frames.cpp
+  src/ros/scene_inertial.cpp
+  src/ros/scene_urdf.cpp
   src/ros/scene_params.cpp
   src/ros/conversions.cpp
   src/ros/body_outputs.cpp
   src/ros/imu_noise_params.cpp
   src/ros/wrench_intake.cpp
+  src/ros/wrench_frame.cpp
   src/ros/body_state_request.cpp
   src/ros/wrench_job_request.cpp
   src/ros/yaml_value.cpp

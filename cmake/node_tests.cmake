@@ -57,8 +57,9 @@ catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_in
   test/ros/runtime_config_test.cpp test/ros/body_outputs_test.cpp
   test/ros/imu_noise_params_test.cpp test/ros/wrench_job_request_test.cpp
   test/ros/yaml_value_test.cpp test/ros/lockstep_gate_test.cpp
-  test/ros/state_hash_worker_test.cpp test/ros/urdf_body_test.cpp)
-# urdf_body_test reads config/quadrotor.urdf from the source tree.
+  test/ros/state_hash_worker_test.cpp test/ros/urdf_body_test.cpp
+  test/ros/wrench_frame_test.cpp test/ros/scene_frames_test.cpp)
+# urdf_body_test and scene_frames_test read config/quadrotor.urdf from the source tree.
 target_compile_definitions(ros_units_test PRIVATE
   RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 target_include_directories(ros_units_test PRIVATE ${catkin_INCLUDE_DIRS})

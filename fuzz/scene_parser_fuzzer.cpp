@@ -153,6 +153,9 @@ void Fail(const char* what, std::size_t body) {
   std::abort();
 }
 
+// No master: a `urdf: {param: ..}` finds no parameter.
+bool NoParameters(const std::string&, XmlRpc::XmlRpcValue*) { return false; }
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -170,7 +173,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   rigid_body_sim::SceneBodies scene_bodies;
   try {
-    rigid_body_sim::ParseBodies(bodies, &scene_bodies);
+    rigid_body_sim::ParseBodies(bodies, &scene_bodies, NoParameters);
   } catch (const rigid_body_sim::SceneError& error) {
     if (Verbose()) std::fprintf(stderr, "SceneError: %s\n", error.what());
     return 0;

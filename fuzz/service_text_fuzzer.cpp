@@ -57,6 +57,9 @@ bool Verbose() {
   std::abort();
 }
 
+// No master: a `urdf: {param: ..}` finds no parameter.
+bool NoParameters(const std::string&, XmlRpc::XmlRpcValue*) { return false; }
+
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
@@ -73,7 +76,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const std::string text(reinterpret_cast<const char*>(data), size);
   rigid_body_sim::SceneBodies entry;
   try {
-    rigid_body_sim::ParseBodyEntry(rigid_body_sim::XmlRpcFromYaml(text), world->size(), &entry);
+    rigid_body_sim::ParseBodyEntry(rigid_body_sim::XmlRpcFromYaml(text), world->size(), &entry,
+                                   NoParameters);
   } catch (const std::exception& error) {  // SceneError: the node's answer
     if (Verbose()) std::fprintf(stderr, "refused: %s\n", error.what());
     return 0;

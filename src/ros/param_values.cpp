@@ -1,8 +1,10 @@
 #include "rigid_body_sim/ros/param_values.h"
 
 #include <cmath>
+#include <optional>
 
 #include "rigid_body_sim/core/format_number.h"
+#include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/ros/scene_error.h"
 
 namespace rigid_body_sim {
@@ -70,5 +72,15 @@ Eigen::Matrix<double, N, 1> ReadFiniteVector(const XmlRpcValue& value, const std
 
 template Eigen::Vector3d ReadFiniteVector<3>(const XmlRpcValue& value, const std::string& key);
 template Eigen::Vector4d ReadFiniteVector<4>(const XmlRpcValue& value, const std::string& key);
+
+Eigen::Quaterniond ReadUnitQuaternion(const XmlRpcValue& value, const std::string& key) {
+  const Eigen::Vector4d xyzw = ReadFiniteVector<4>(value, key);
+  const std::optional<Eigen::Quaterniond> unit =
+      core::ToUnitQuaternion(xyzw[0], xyzw[1], xyzw[2], xyzw[3]);
+  if (!unit) {
+    throw SceneError(key + " must be a non-zero quaternion [x, y, z, w], got " + Describe(value));
+  }
+  return *unit;
+}
 
 }  // namespace rigid_body_sim

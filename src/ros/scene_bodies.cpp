@@ -7,12 +7,13 @@
 #include <string>
 #include <vector>
 
-#include "rigid_body_sim/core/inertia.h"
-#include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
+#include "rigid_body_sim/ros/scene_frames.h"
+#include "rigid_body_sim/ros/scene_inertial.h"
+#include "rigid_body_sim/ros/scene_urdf.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -95,69 +96,10 @@ std::vector<core::Particle> ReadShape(const XmlRpcValue& body, const std::string
   return core::MakeCylinder(mass, radius, ReadRequiredPositive(body, "length"), resolution);
 }
 
-// Refuses a key of `map` (the value at `key`) not among `known`.
-void CheckMapKeys(const XmlRpcValue& map, const std::string& key,
-                  const std::vector<std::string>& known) {
-  for (const auto& member : map) {
-    if (std::find(known.begin(), known.end(), member.first) != known.end()) continue;
-    std::string list;
-    for (const auto& name : known) list += (list.empty() ? "" : ", ") + name;
-    throw SceneError(key + " has unknown key '" + member.first + "' (known: " + list + ")");
-  }
-}
-
-const XmlRpcValue& ReadMap(const XmlRpcValue& value, const std::string& key,
-                           const std::vector<std::string>& known) {
-  if (value.getType() != XmlRpcValue::TypeStruct) {
-    std::string list;
-    for (const auto& name : known) list += (list.empty() ? "" : ", ") + name;
-    throw SceneError(key + " must be a map {" + list + "}, got " + Describe(value));
-  }
-  CheckMapKeys(value, key, known);
-  return value;
-}
-
-// `inertial: {mass, origin: {xyz, rpy}, inertia: {ixx, ..., izz}}`, URDF's
-// names and meaning: the model of mass M, x̄_CM = xyz and Ī = R Ī_origin Rᵀ.
-core::BodyModel ReadInertial(const std::string& name, const XmlRpcValue& value) {
-  const XmlRpcValue& inertial = ReadMap(value, "inertial", {"mass", "origin", "inertia"});
-  if (!inertial.hasMember("mass")) throw SceneError("inertial.mass is missing");
-  const double mass = ReadPositiveNumber(inertial["mass"], "inertial.mass");
-  Eigen::Vector3d xyz = Eigen::Vector3d::Zero();
-  Eigen::Vector3d rpy = Eigen::Vector3d::Zero();
-  if (inertial.hasMember("origin")) {
-    const XmlRpcValue& origin = ReadMap(inertial["origin"], "inertial.origin", {"xyz", "rpy"});
-    if (origin.hasMember("xyz")) xyz = ReadFiniteVector<3>(origin["xyz"], "inertial.origin.xyz");
-    if (origin.hasMember("rpy")) rpy = ReadFiniteVector<3>(origin["rpy"], "inertial.origin.rpy");
-  }
-  if (!inertial.hasMember("inertia")) throw SceneError("inertial.inertia is missing");
-  const std::vector<std::string> kEntries = {"ixx", "ixy", "ixz", "iyy", "iyz", "izz"};
-  const XmlRpcValue& inertia = ReadMap(inertial["inertia"], "inertial.inertia", kEntries);
-  double numbers[6];
-  for (std::size_t k = 0; k < kEntries.size(); ++k) {
-    const std::string key = "inertial.inertia." + kEntries[k];
-    if (!inertia.hasMember(kEntries[k])) throw SceneError(key + " is missing");
-    numbers[k] = ReadFiniteNumber(inertia[kEntries[k]], key);
-  }
-  const core::InertiaEntries entries{numbers[0], numbers[1], numbers[2],
-                                     numbers[3], numbers[4], numbers[5]};
-  const core::RigidPart part = core::InertialPart(mass, xyz, rpy, entries);
-  try {
-    return core::BodyModel(name, part.mass_kg, part.com_m, part.inertia_kgm2);
-  } catch (const std::invalid_argument& error) {
-    // "body 'n': inertia must be ..." → "inertial.inertia must be ..."; the
-    // caller names the entry.
-    std::string what = error.what();
-    const std::string prefix = "body '" + name + "': ";
-    if (what.compare(0, prefix.size(), prefix) == 0) what = what.substr(prefix.size());
-    throw SceneError("inertial." + what);
-  }
-}
-
 void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) {
   static const std::set<std::string> kCommonKeys = {
-      "name",          "position",       "orientation",    "linear_velocity", "angular_velocity",
-      "gravity_scale", "linear_damping", "angular_damping"};
+      "name",          "position",       "orientation",     "linear_velocity", "angular_velocity",
+      "gravity_scale", "linear_damping", "angular_damping", "frame",           "sites"};
   for (const auto& member : body) {
     if (kCommonKeys.count(member.first) || kind_keys.count(member.first)) continue;
     std::string known;
@@ -170,19 +112,6 @@ void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) 
 
 Eigen::Vector3d ReadOptionalVector3(const XmlRpcValue& body, const std::string& key) {
   return body.hasMember(key) ? ReadFiniteVector<3>(body[key], key) : Eigen::Vector3d::Zero();
-}
-
-Eigen::Quaterniond ReadOrientation(const XmlRpcValue& body) {
-  if (!body.hasMember("orientation")) return Eigen::Quaterniond::Identity();
-  const Eigen::Vector4d xyzw = ReadFiniteVector<4>(body["orientation"], "orientation");
-  // Hand-written quaternions are rounded; any non-zero one is normalised.
-  const std::optional<Eigen::Quaterniond> unit =
-      core::ToUnitQuaternion(xyzw[0], xyzw[1], xyzw[2], xyzw[3]);
-  if (!unit) {
-    throw SceneError("orientation must be a non-zero quaternion [x, y, z, w], got " +
-                     Describe(body["orientation"]));
-  }
-  return *unit;
 }
 
 core::BodyProperties ReadProperties(const XmlRpcValue& body) {
@@ -200,66 +129,112 @@ core::BodyProperties ReadProperties(const XmlRpcValue& body) {
   return properties;
 }
 
-// One entry of `bodies`; errors name the key, the caller adds the entry.
-core::BodyDef ReadBody(const XmlRpcValue& body) {
-  const std::string& name = body["name"];
-  const bool has_particles = body.hasMember("particles");
-  const bool has_shape = body.hasMember("shape");
-  const bool has_inertial = body.hasMember("inertial");
-  if (int{has_particles} + int{has_shape} + int{has_inertial} != 1) {
+// Refuses an entry without exactly one of the keys that give a body its mass.
+void CheckModelKeys(const XmlRpcValue& body) {
+  int count = 0;
+  for (const char* key : {"particles", "shape", "inertial", "urdf"}) count += body.hasMember(key);
+  if (count != 1) {
     throw SceneError(
-        "needs exactly one of particles (a list), shape (box, sphere, cylinder) or inertial "
-        "(mass, origin, inertia)");
+        "needs exactly one of particles (a list), shape (box, sphere, cylinder), inertial "
+        "(mass, origin, inertia) or urdf (xml, file or param)");
   }
+}
+
+// The entry's `urdf` body, if it has the key, read after the entry's other
+// keys are known to be allowed.
+std::optional<UrdfEntry> ReadUrdfKey(const XmlRpcValue& body, const std::string& name,
+                                     const UrdfParamLookup& lookup) {
+  CheckModelKeys(body);
+  if (!body.hasMember("urdf")) return std::nullopt;
+  CheckKeys(body, {"urdf"});
+  // Only robot_state_publisher broadcasts a URDF body's frames: a site of its
+  // own would be missing from TF.
+  if (body.hasMember("sites")) {
+    throw SceneError("sites cannot be given with urdf: its links are its sites (add a link)");
+  }
+  return ReadUrdfEntry(body["urdf"], name, lookup);
+}
+
+// One entry of `bodies` named `name`, its `urdf` body already read if it has
+// one; errors name the key, the caller adds the entry.
+core::BodyDef ReadBody(const XmlRpcValue& body, const std::string& name,
+                       std::optional<UrdfEntry> urdf) {
   std::optional<core::BodyModel> model;
-  if (has_particles) {
+  core::BodyFrames frames;
+  if (body.hasMember("particles")) {
     CheckKeys(body, {"particles"});
     model.emplace(name, ReadParticles(body["particles"]));
-  } else if (has_shape) {
+  } else if (body.hasMember("shape")) {
     const XmlRpcValue& shape = body["shape"];
     if (shape.getType() != XmlRpcValue::TypeString) {
       throw SceneError("shape must be one of box, sphere, cylinder, got " + Describe(shape));
     }
     CheckKeys(body, ShapeKeys(shape));
     model.emplace(name, ReadShape(body, shape));
-  } else {
+  } else if (body.hasMember("inertial")) {
     CheckKeys(body, {"inertial"});
     model.emplace(ReadInertial(name, body["inertial"]));
+  } else {
+    model.emplace(std::move(urdf->model));
+    frames = std::move(urdf->frames);
   }
+  frames.origin = ReadFrameOrigin(body, frames.origin);
+  if (body.hasMember("sites")) frames.sites = ReadSites(body["sites"], name);
   const Eigen::Vector3d position = ReadOptionalVector3(body, "position");
-  const Eigen::Quaterniond orientation = ReadOrientation(body);
+  const Eigen::Quaterniond orientation =
+      body.hasMember("orientation") ? ReadUnitQuaternion(body["orientation"], "orientation")
+                                    : Eigen::Quaterniond::Identity();
   const Eigen::Vector3d linear_velocity = ReadOptionalVector3(body, "linear_velocity");
   const Eigen::Vector3d angular_velocity = ReadOptionalVector3(body, "angular_velocity");
   const core::BodyProperties properties = ReadProperties(body);
 
   // Unique names and a state the world's step can take are the World's to check.
-  const core::BodyState initial_state =
-      core::StateFromTwist(*model, position, orientation, linear_velocity, angular_velocity);
-  return core::BodyDef{std::move(*model), initial_state, properties};
+  const core::BodyState initial_state = StateAtFrameOrigin(
+      *model, frames.origin, position, orientation, linear_velocity, angular_velocity);
+  return core::BodyDef{std::move(*model), initial_state, properties, std::move(frames)};
 }
 
 }  // namespace
 
-void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies) {
+void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies,
+                    const UrdfParamLookup& lookup) {
   std::string entry = "bodies[" + std::to_string(index) + "]";
   if (body.getType() != XmlRpcValue::TypeStruct) {
     throw SceneError(entry +
-                     ": must be a map with a name and particles, a shape or inertial, got " +
+                     ": must be a map with a name and particles, a shape, inertial or urdf, got " +
                      Describe(body));
   }
-  if (!body.hasMember("name")) throw SceneError(entry + ": name is missing");
-  const XmlRpcValue& name = body["name"];
-  if (name.getType() != XmlRpcValue::TypeString || static_cast<const std::string&>(name).empty()) {
-    throw SceneError(entry + ": name must be a non-empty string, got " + Describe(name));
+  // A urdf body's name defaults to its root link's.
+  const bool has_name = body.hasMember("name");
+  if (!has_name && !body.hasMember("urdf")) throw SceneError(entry + ": name is missing");
+  std::string name;
+  if (has_name) {
+    const XmlRpcValue& value = body["name"];
+    if (value.getType() != XmlRpcValue::TypeString ||
+        static_cast<const std::string&>(value).empty()) {
+      throw SceneError(entry + ": name must be a non-empty string, got " + Describe(value));
+    }
+    name = static_cast<const std::string&>(value);
+    try {
+      core::CheckBodyName(name, index);  // names the entry
+    } catch (const std::invalid_argument& error) {
+      throw SceneError(error.what());
+    }
+    entry += " (name '" + name + "')";
+  }
+  std::optional<UrdfEntry> urdf;
+  try {
+    urdf = ReadUrdfKey(body, name, lookup);
+  } catch (const std::exception& error) {
+    throw SceneError(entry + ": " + error.what());
+  }
+  if (!has_name) {
+    // The root link's name, which has passed the body-name rule as a site's.
+    name = urdf->model.name();
+    entry += " (name '" + name + "')";
   }
   try {
-    core::CheckBodyName(static_cast<const std::string&>(name), index);  // names the entry
-  } catch (const std::invalid_argument& error) {
-    throw SceneError(error.what());
-  }
-  entry += " (name '" + static_cast<const std::string&>(name) + "')";
-  try {
-    core::BodyDef def = ReadBody(body);
+    core::BodyDef def = ReadBody(body, name, std::move(urdf));
     scene_bodies->models.push_back(std::move(def.model));
     scene_bodies->initial_states.push_back(def.initial_state);
     scene_bodies->properties.push_back(def.properties);
@@ -269,7 +244,8 @@ void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* sce
   }
 }
 
-void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies) {
+void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies,
+                 const UrdfParamLookup& lookup) {
   if (bodies.getType() != XmlRpcValue::TypeArray) {  // an empty list is an empty world
     throw SceneError("~bodies must be a list of bodies, got " + Describe(bodies));
   }
@@ -277,7 +253,7 @@ void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies) {
     throw SceneError("~bodies has " + std::to_string(bodies.size()) + " entries, at most " +
                      std::to_string(kMaxSceneBodies) + " are allowed");
   }
-  for (int i = 0; i < bodies.size(); ++i) ParseBodyEntry(bodies[i], i, scene_bodies);
+  for (int i = 0; i < bodies.size(); ++i) ParseBodyEntry(bodies[i], i, scene_bodies, lookup);
 }
 
 std::vector<core::BodyDef> BodyDefs(const SceneBodies& scene_bodies) {

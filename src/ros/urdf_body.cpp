@@ -169,13 +169,13 @@ UrdfBody ParseUrdfBody(const std::string& xml, const std::string& root, const st
   }
 }
 
-UrdfSource ParseUrdfSource(XmlRpcValue& urdf) {
+UrdfSource ParseUrdfSource(const XmlRpcValue& urdf) {
   if (urdf.getType() != XmlRpcValue::TypeStruct) {
     throw SceneError("urdf must be a map with one of xml, file or param, got " + Describe(urdf));
   }
   UrdfSource source;
   int sources = 0;
-  for (auto& [key, value] : urdf) {
+  for (const auto& [key, value] : urdf) {
     const bool is_source = key == "xml" || key == "file" || key == "param";
     if (!is_source && key != "root") {
       throw SceneError("urdf: unknown key " + Quoted(key) +
@@ -184,7 +184,7 @@ UrdfSource ParseUrdfSource(XmlRpcValue& urdf) {
     if (value.getType() != XmlRpcValue::TypeString) {
       throw SceneError("urdf." + key + " must be a string, got " + Describe(value));
     }
-    const std::string& text = static_cast<std::string&>(value);
+    const std::string& text = static_cast<const std::string&>(value);
     if (key == "root") {
       if (text.empty()) throw SceneError("urdf.root must be a link name, got ''");
       source.root = text;

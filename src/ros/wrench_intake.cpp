@@ -2,13 +2,10 @@
 
 #include "rigid_body_sim/ros/conversions.h"
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/wrench_frame.h"
 
 namespace rigid_body_sim {
 namespace {
-
-std::string WithoutLeadingSlash(const std::string& frame) {
-  return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
-}
 
 // The rejection for a body that is not this node's.
 WrenchMsgRejection NotHereRejection(const std::string& body, const WrenchFrames& frames) {
@@ -69,22 +66,6 @@ std::string NotHereMessage(const std::string& body, const WrenchFrames& frames) 
          std::to_string(frames.shard_count);
 }
 
-std::optional<core::WrenchAxes> AxesOfFrame(const std::string& frame_id, const std::string& body,
-                                            const WrenchFrames& frames) {
-  const std::string frame = WithoutLeadingSlash(frame_id);
-  if (frame.empty() || frame == WithoutLeadingSlash(frames.world_frame)) {
-    return core::WrenchAxes::kWorld;
-  }
-  if (frame == body || frame == BodyFrameId(frames.tf_prefix, body)) return core::WrenchAxes::kBody;
-  return std::nullopt;
-}
-
-std::string UnknownFrameMessage(const std::string& frame_id, const std::string& body,
-                                const WrenchFrames& frames) {
-  return "unknown frame_id " + QuotedName(frame_id) + " for body " + QuotedName(body) +
-         " (use '', '" + frames.world_frame + "' or '" + BodyFrameId(frames.tf_prefix, body) + "')";
-}
-
 double StartTimeOf(const ros::Time& stamp, const ros::Time& start_stamp, double next_step_time_s) {
   // A stamp copied from a published state may differ from its t_n by the
   // nanosecond rounding; the world counts times within 1e-3 dt as equal.
@@ -129,14 +110,16 @@ Checked<CoreWrench> CheckWrench(const std::string& body, const std::uint32_t* pa
                   "NaN or infinite force or torque for body '" + body + "'" +
                       (particle != nullptr ? " particle " + std::to_string(*particle) : ""));
   }
-  const std::optional<core::WrenchAxes> axes = AxesOfFrame(frame_id, body, frames);
-  if (!axes) {
+  const std::optional<WrenchFrame> frame = FrameOfWrench(frame_id, body, frames);
+  if (!frame) {
     return reject(WrenchMsgRejection::kUnknownFrame, UnknownFrameMessage(frame_id, body, frames));
   }
   result.wrench.body = *id;
-  result.wrench.axes = *axes;
-  result.wrench.force = force;
-  result.wrench.couple = couple;
+  result.wrench.axes = frame->axes;
+  result.wrench.force = frame->Vector(force);
+  result.wrench.couple = frame->Vector(couple);
+  // A body wrench's force acts at the frame's origin: a site's is off the COM.
+  if (particle == nullptr) result.wrench.couple += frame->OriginMoment(result.wrench.force);
   result.wrench.start_s = StartTimeOf(stamp, start_stamp, next_step_time_s);
   return result;
 }

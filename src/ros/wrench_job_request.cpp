@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "rigid_body_sim/ros/conversions.h"
+#include "rigid_body_sim/ros/wrench_frame.h"
 
 namespace rigid_body_sim {
 
@@ -16,9 +17,9 @@ std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& re
     *message = "body: " + NotHereMessage(request.body, frames);
     return std::nullopt;
   }
-  const std::optional<core::WrenchAxes> axes =
-      AxesOfFrame(request.reference_frame, request.body, frames);
-  if (!axes) {
+  const std::optional<WrenchFrame> frame =
+      FrameOfWrench(request.reference_frame, request.body, frames);
+  if (!frame) {
     *message =
         "reference_frame: " + UnknownFrameMessage(request.reference_frame, request.body, frames);
     return std::nullopt;
@@ -45,10 +46,11 @@ std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& re
   }
   core::WrenchJob job;
   job.body = *body;
-  job.axes = *axes;
-  job.force = force;
-  job.couple = couple;
-  job.point_m = point;
+  // A site's axes and point become the body's: the job acts as one given there.
+  job.axes = frame->axes;
+  job.force = frame->Vector(force);
+  job.couple = frame->Vector(couple);
+  job.point_m = frame->Point(point);
   job.start_s = StartTimeOf(request.start_time, start_stamp, next_step_time_s);
   job.end_s = request.duration > ros::Duration(0) ? job.start_s + request.duration.toSec()
                                                   : std::numeric_limits<double>::infinity();

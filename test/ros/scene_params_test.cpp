@@ -269,7 +269,7 @@ TEST(SceneParams, InertialErrorsNameTheEntryAndTheKeyPath) {
   both["particles"] = Dumbbell("x")["particles"];
   EXPECT_EQ(ErrorOf(List({both})),
             "bodies[0] (name 'both'): needs exactly one of particles (a list), shape (box, "
-            "sphere, cylinder) or inertial (mass, origin, inertia)");
+            "sphere, cylinder), inertial (mass, origin, inertia) or urdf (xml, file or param)");
 
   XmlRpcValue extra = Puck("extra");
   extra["mass"] = 1.0;  // a shape's key

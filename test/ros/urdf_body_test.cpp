@@ -227,6 +227,30 @@ TEST(UrdfBody, TextOverOneMegabyteIsRefused) {
   EXPECT_NE(error.find("1048576"), std::string::npos) << error;
 }
 
+// Nested entities ("billion laughs") would make a link name of 10⁹ "lol"s
+// from a few hundred bytes if the parser expanded them. tinyxml2 expands
+// only XML's five predefined entities: the text is refused or the name stays
+// as written, never the expansion.
+TEST(UrdfBody, NestedEntitiesAreNotExpanded) {
+  std::string dtd = "<!DOCTYPE robot [<!ENTITY lol0 \"lol\">";
+  for (int level = 1; level <= 9; ++level) {
+    std::string ten;
+    for (int k = 0; k < 10; ++k) ten += "&lol" + std::to_string(level - 1) + ";";
+    dtd += "<!ENTITY lol" + std::to_string(level) + " \"" + ten + "\">";
+  }
+  dtd += "]>";
+  const std::string xml = "<?xml version=\"1.0\"?>" + dtd +
+                          "<robot name=\"laughs\"><link name=\"&lol9;\">" +
+                          Inertial(1, "0 0 0", "0 0 0", 1, 1, 1) + "</link></robot>";
+  try {
+    const UrdfBody body = ParseUrdfBody(xml);
+    ASSERT_EQ(body.sites.size(), 1u);
+    EXPECT_LE(body.sites[0].name.size(), xml.size());
+  } catch (const SceneError& error) {
+    EXPECT_NE(std::string(error.what()).find("urdf: "), std::string::npos) << error.what();
+  }
+}
+
 // ---- Where the text comes from ----------------------------------------------
 
 std::string SourceErrorOf(XmlRpcValue urdf) {

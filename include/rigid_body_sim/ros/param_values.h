@@ -7,6 +7,7 @@
 
 #include <xmlrpcpp/XmlRpcValue.h>
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 
 namespace rigid_body_sim {
 
@@ -27,5 +28,10 @@ double ReadPositiveNumber(const XmlRpc::XmlRpcValue& value, const std::string& k
 template <int N>
 Eigen::Matrix<double, N, 1> ReadFiniteVector(const XmlRpc::XmlRpcValue& value,
                                              const std::string& key);
+
+// A quaternion [x, y, z, w] as hand-written ones are, rounded: any non-zero
+// one is normalised. Throws SceneError "<key> must be 4 finite numbers, got
+// ..." or "<key> must be a non-zero quaternion [x, y, z, w], got ...".
+Eigen::Quaterniond ReadUnitQuaternion(const XmlRpc::XmlRpcValue& value, const std::string& key);
 
 }  // namespace rigid_body_sim

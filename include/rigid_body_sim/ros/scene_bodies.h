@@ -1,6 +1,7 @@
 // The scene's `bodies` list (doc/node.md, "The scene"), and one entry of it as
-// ~spawn_body reads it: each entry a particle list, a generated shape or an
-// inertial element (a mass, a COM and an inertia tensor, as URDF writes them).
+// ~spawn_body reads it: each entry a particle list, a generated shape, an
+// inertial element (a mass, a COM and an inertia tensor, as URDF writes them)
+// or a URDF, with its frame origin and sites (scene_frames.h).
 #pragma once
 
 #include <cstddef>
@@ -13,6 +14,7 @@
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_properties.h"
 #include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/ros/urdf_body.h"
 
 namespace rigid_body_sim {
 
@@ -31,16 +33,20 @@ constexpr std::size_t kMaxSceneBodies = 100000;
 // The most particles one body may have, for the same reason.
 constexpr int kMaxParticlesPerBody = 100000;
 
-// The `bodies` list alone, so that it can be checked without a master; an
-// empty list is an empty world. Throws SceneError. Unique names and initial
+// The `bodies` list alone, so that it can be checked without a master (a
+// `urdf: {param: ..}` is read through `lookup`); an empty list is an empty
+// world. Throws SceneError. Names unique among bodies and sites and initial
 // states (core::CheckBodyDef with the world's step) are checked by the
 // core::World built from the result, or core::CheckBodyDefs.
-void ParseBodies(const XmlRpc::XmlRpcValue& bodies, SceneBodies* scene_bodies);
+void ParseBodies(const XmlRpc::XmlRpcValue& bodies, SceneBodies* scene_bodies,
+                 const UrdfParamLookup& lookup = LookupMasterParam);
 
 // One entry of `bodies`, as it would be checked at index `index` of the
 // list, appended to `scene_bodies`. Throws SceneError ("bodies[i] (name
-// 'n'): ..."); appends nothing then.
-void ParseBodyEntry(const XmlRpc::XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies);
+// 'n'): ...", "bodies[i]: ..." while a urdf body's default name is not yet
+// known); appends nothing then.
+void ParseBodyEntry(const XmlRpc::XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies,
+                    const UrdfParamLookup& lookup = LookupMasterParam);
 
 // The bodies as the core's definitions, in order (copies share the models'
 // particles).

@@ -75,7 +75,7 @@ struct UrdfSource {
 // Reads the `urdf` key's map. Throws SceneError ("urdf: ...") on a value that
 // is not a map, none or more than one of xml/file/param, a value that is not
 // a string, an empty file or parameter name, or an unknown key.
-UrdfSource ParseUrdfSource(XmlRpc::XmlRpcValue& urdf);
+UrdfSource ParseUrdfSource(const XmlRpc::XmlRpcValue& urdf);
 
 // `lookup(name, &value)` is false when the parameter is not set.
 using UrdfParamLookup = std::function<bool(const std::string& name, XmlRpc::XmlRpcValue* value)>;

@@ -44,9 +44,9 @@ constexpr std::size_t kWrenchMsgRejectionCount = 9;
 const char* ToString(WrenchMsgRejection rejection);
 
 // What a message is checked against: the world's bodies and the frames that
-// name world axes and each body's axes.
+// name world axes, each body's axes and its sites.
 struct WrenchFrames {
-  // Names and particle counts of the bodies, read on the stepping thread.
+  // Names, particle counts and sites of the bodies, read on the stepping thread.
   const core::World* world = nullptr;
   std::string world_frame;
   std::string tf_prefix;
@@ -64,15 +64,6 @@ std::string QuotedName(const std::string& name);
 // another shard, "body 'x' is simulated by shard 1 of 2".
 std::string NotHereMessage(const std::string& body, const WrenchFrames& frames);
 
-// The axes `frame_id` names for a wrench on `body`: "" or the world frame →
-// world axes; the body's name, with or without tf_prefix, → body axes; a
-// leading '/' is ignored (tf1 habit); anything else → nullopt.
-std::optional<core::WrenchAxes> AxesOfFrame(const std::string& frame_id, const std::string& body,
-                                            const WrenchFrames& frames);
-// "unknown frame_id 'x' for body 'b' (use '', 'world' or 'sim/b')".
-std::string UnknownFrameMessage(const std::string& frame_id, const std::string& body,
-                                const WrenchFrames& frames);
-
 // A message checked into a core wrench (core::ParticleWrench or BodyWrench).
 template <typename CoreWrench>
 struct Checked {
@@ -84,7 +75,9 @@ struct Checked {
 using CheckedWrench = Checked<core::ParticleWrench>;
 using CheckedBodyWrench = Checked<core::BodyWrench>;
 
-// The check itself, without counting; frame_id as AxesOfFrame. Times are
+// The check itself, without counting; frame_id as FrameOfWrench (its vectors
+// in a site's axes become body axes; a body wrench's force acts at the site's
+// origin, a particle wrench's at the particle). Times are
 // simulation times counted from `start_stamp`: a zero stamp starts at
 // `next_step_time_s`, the time of the next step; any other at stamp −
 // start_stamp (exact, in nanoseconds).
