@@ -228,4 +228,4 @@ installing=1
   > "$tmp/install.log" 2>&1 || fail "catkin_make install -DCMAKE_INSTALL_PREFIX=$prefix" "$tmp/install.log"
 # It prints its own FAIL line.
 env -i PATH=/usr/bin:/bin HOME="$HOME" bash "$self" --in-install-space "$prefix" "$ws" "$tmp" || exit 1
-echo "install_space_test: OK in $(( $(date +%s) - start_time )) s (install space, node, 2 shards pinned and not, Python client)"
+echo "install_space_test: OK in $(( $(date +%s) - start_time )) s (install space, node, Python client, quadrotor, 2 shards pinned and not)"
