@@ -32,7 +32,9 @@ add_library(rigid_body_sim_ros
   src/ros/urdf_body.cpp
   src/ros/body_topics.cpp
   src/ros/log_thread.cpp
+  src/ros/held_joint_states.cpp
   src/ros/state_publisher.cpp
+  src/ros/static_frames.cpp
   src/ros/node_diagnostics.cpp
   src/ros/runtime_config.cpp
   src/ros/lockstep_gate.cpp

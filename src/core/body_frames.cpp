@@ -16,6 +16,18 @@ PointMotion MotionOfPoint(const BodyModel& model, const BodyState& state,
           LinearVelocity(model, state) + AngularVelocity(model, state).cross(offset_W)};
 }
 
+Eigen::Vector3d FrameOriginPosition(const BodyModel& model, const BodyState& state,
+                                    FrameOrigin origin) {
+  if (origin == FrameOrigin::kCom) return state.position;
+  return state.position + state.orientation * FrameOriginOffset(model, origin);
+}
+
+Eigen::Vector3d FrameOriginVelocity(const BodyModel& model, const BodyState& state,
+                                    FrameOrigin origin) {
+  if (origin == FrameOrigin::kCom) return LinearVelocity(model, state);
+  return MotionOfPoint(model, state, FrameOriginOffset(model, origin)).velocity_mps;
+}
+
 PointMotion ComMotion(const Eigen::Quaterniond& orientation, const Eigen::Vector3d& omega_W,
                       const Eigen::Vector3d& offset_B, const Eigen::Vector3d& position_m,
                       const Eigen::Vector3d& velocity_mps) {

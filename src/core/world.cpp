@@ -131,6 +131,7 @@ void World::Step() {
       if (properties[i].has_damping()) hot.loaded[i] = 1;
     }
   }
+  if (integrator_->continues_free_flows()) hot.free_flows.resize(size());
   last_step_recorded_ = record_next_step_;
   record_next_step_ = false;
   if (last_step_recorded_) RecordStepStart();
@@ -211,7 +212,7 @@ void World::RecordStepStart() {
     const BodyState& state = hot.states[i];
     const BodyProperties& properties = cold.properties[i];
     StepRecord& record = cold.step_records[i];
-    record.start_velocity_mps = hot.models[i].inverse_mass() * state.linear_momentum;
+    record.start_velocity_mps = FrameOriginVelocity(hot.models[i], state, cold.frames[i].origin);
     record.wrench =
         hot.loaded[i] ? hot.loads[i].At(0.0, state.orientation.toRotationMatrix()) : Wrench{};
     record.wrench.force -= properties.linear_damping_per_s * state.linear_momentum;
@@ -221,7 +222,9 @@ void World::RecordStepStart() {
 
 BodyBatch World::Batch(const std::vector<std::size_t>& indices) {
   BodyHotColumns& hot = bodies_.hot();
-  return {hot.models.data(), hot.loads.data(), hot.states.data(), indices.data(), indices.size()};
+  ExactFreeFlow* free_flows = hot.free_flows.empty() ? nullptr : hot.free_flows.data();
+  return {hot.models.data(), hot.loads.data(), hot.states.data(),
+          indices.data(),    indices.size(),   free_flows};
 }
 
 void World::StepLoadedBatch(Share* share) {
@@ -308,6 +311,7 @@ void World::SetWrenchTimeout(double timeout_s) {
 void World::SetIntegrator(const std::string& name) {
   integrator_ = MakeIntegrator(name);
   options_.integrator = name;
+  bodies_.hot().free_flows.clear();  // kept for exact_free alone
 }
 
 }  // namespace rigid_body_sim::core

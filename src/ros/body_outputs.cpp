@@ -17,33 +17,52 @@ void SetDiagonalCovariance(double stddev, boost::array<double, 9>* covariance) {
 
 }  // namespace
 
+geometry_msgs::Pose ToFramePoseMsg(const core::BodyModel& model, const core::BodyState& state,
+                                   core::FrameOrigin origin) {
+  geometry_msgs::Pose msg;
+  msg.position = tf2::toMsg(core::FrameOriginPosition(model, state, origin));
+  msg.orientation = tf2::toMsg(state.orientation);
+  return msg;
+}
+
+geometry_msgs::Transform ToFrameTransformMsg(const core::BodyModel& model,
+                                             const core::BodyState& state,
+                                             core::FrameOrigin origin) {
+  geometry_msgs::Transform msg;
+  msg.translation = ToVector3Msg(core::FrameOriginPosition(model, state, origin));
+  msg.rotation = tf2::toMsg(state.orientation);
+  return msg;
+}
+
 nav_msgs::Odometry ToOdometryMsg(const core::BodyModel& model, const core::BodyState& state,
-                                 const std::string& world_frame_id,
-                                 const std::string& body_frame_id, const ros::Time& stamp) {
+                                 const std::string& world_frame_id, const BodyFrame& body_frame,
+                                 const ros::Time& stamp) {
   nav_msgs::Odometry msg;
   msg.header.stamp = stamp;
   msg.header.frame_id = world_frame_id;
-  msg.child_frame_id = body_frame_id;
-  msg.pose.pose = ToPoseMsg(state);
+  msg.child_frame_id = body_frame.frame_id;
+  msg.pose.pose = ToFramePoseMsg(model, state, body_frame.origin);
   const Eigen::Matrix3d to_body = state.orientation.toRotationMatrix().transpose();
-  msg.twist.twist.linear = ToVector3Msg(to_body * core::LinearVelocity(model, state));
+  msg.twist.twist.linear =
+      ToVector3Msg(to_body * core::FrameOriginVelocity(model, state, body_frame.origin));
   msg.twist.twist.angular = ToVector3Msg(to_body * core::AngularVelocity(model, state));
   return msg;
 }
 
 sensor_msgs::Imu ToImuMsg(const core::BodyModel& model, const core::BodyState& state,
                           const ImuInputs& inputs, const core::ImuNoise& noise,
-                          const std::string& body_frame_id, const ros::Time& stamp) {
+                          const BodyFrame& body_frame, const ros::Time& stamp) {
   const Eigen::Matrix3d to_body = state.orientation.toRotationMatrix().transpose();
   const Eigen::Vector3d acceleration =
-      (core::LinearVelocity(model, state) - inputs.previous_velocity_mps) / inputs.dt_s;
+      (core::FrameOriginVelocity(model, state, body_frame.origin) - inputs.previous_velocity_mps) /
+      inputs.dt_s;
   const Eigen::Vector3d specific_force =
       to_body * (acceleration - inputs.gravity_scale * inputs.gravity_mps2);
   const core::ImuNoiseSample error = core::DrawImuNoise(noise, inputs.body, inputs.step);
 
   sensor_msgs::Imu msg;
   msg.header.stamp = stamp;
-  msg.header.frame_id = body_frame_id;
+  msg.header.frame_id = body_frame.frame_id;
   msg.orientation = tf2::toMsg(core::TurnedInBodyAxes(state.orientation, error.orientation_rad));
   msg.angular_velocity =
       ToVector3Msg(to_body * core::AngularVelocity(model, state) + error.angular_velocity_radps);
@@ -54,16 +73,23 @@ sensor_msgs::Imu ToImuMsg(const core::BodyModel& model, const core::BodyState& s
   return msg;
 }
 
-geometry_msgs::WrenchStamped ToAppliedWrenchMsg(const core::BodyState& state,
+geometry_msgs::WrenchStamped ToAppliedWrenchMsg(const core::BodyModel& model,
+                                                const core::BodyState& state,
                                                 const core::Wrench& world_wrench,
-                                                const std::string& body_frame_id,
+                                                const BodyFrame& body_frame,
                                                 const ros::Time& stamp) {
   const Eigen::Matrix3d to_body = state.orientation.toRotationMatrix().transpose();
+  const Eigen::Vector3d force_B = to_body * world_wrench.force;
+  Eigen::Vector3d torque_B = to_body * world_wrench.torque;
+  if (body_frame.origin != core::FrameOrigin::kCom) {
+    // x_CM − x_O in body axes is minus the origin's offset from the COM.
+    torque_B -= core::FrameOriginOffset(model, body_frame.origin).cross(force_B);
+  }
   geometry_msgs::WrenchStamped msg;
   msg.header.stamp = stamp;
-  msg.header.frame_id = body_frame_id;
-  msg.wrench.force = ToVector3Msg(to_body * world_wrench.force);
-  msg.wrench.torque = ToVector3Msg(to_body * world_wrench.torque);
+  msg.header.frame_id = body_frame.frame_id;
+  msg.wrench.force = ToVector3Msg(force_B);
+  msg.wrench.torque = ToVector3Msg(torque_B);
   return msg;
 }
 

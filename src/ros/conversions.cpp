@@ -30,13 +30,6 @@ geometry_msgs::Pose ToPoseMsg(const core::BodyState& state) {
   return msg;
 }
 
-geometry_msgs::Transform ToTransformMsg(const core::BodyState& state) {
-  geometry_msgs::Transform msg;
-  msg.translation = ToVector3Msg(state.position);
-  msg.rotation = tf2::toMsg(state.orientation);
-  return msg;
-}
-
 geometry_msgs::Twist ToTwistMsg(const core::BodyModel& model, const core::BodyState& state) {
   geometry_msgs::Twist msg;
   msg.linear = ToVector3Msg(core::LinearVelocity(model, state));

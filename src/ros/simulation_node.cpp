@@ -45,12 +45,14 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
                  [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
                    front_.OnBodyWrench(body, msg);
                  }),
+      static_frames_(settings_.tf_prefix, world_),
       diagnostics_(private_nh, settings_, world_),
       editor_(&world_,
               [this](const WorldEvent& event) { diagnostics_.OnWorldEvent(event, world_); }),
       front_(private_nh, settings_, this, &editor_, &intake_) {
   // Each follows every spawn and delete.
   world_.AddListener(&publisher_);
+  world_.AddListener(&static_frames_);
   world_.AddListener(&diagnostics_);
   if (settings_.lockstep.enabled) {
     lockstep_.emplace(private_nh, settings_, &intake_,

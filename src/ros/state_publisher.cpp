@@ -51,7 +51,8 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
       particle_marker_diameter_m_(settings.particle_marker_diameter_m),
       tf_prefix_(settings.tf_prefix),
       imu_noise_(settings.imu_noise),
-      body_topics_(private_nh, settings.per_body_topics, std::move(on_body_wrench)) {
+      body_topics_(private_nh, settings.per_body_topics, std::move(on_body_wrench)),
+      joint_states_(private_nh) {
   ros::NodeHandle root;
   Advertise<tf2_msgs::TFMessage>(root, "/tf", kTfQueueSize, &tf_);
   Advertise<BodyStateArray>(private_nh, "bodies", kStateQueueSize, &bodies_);
@@ -62,14 +63,18 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
 
 void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
   const std::string& name = world.model(id).name();
-  per_body_.Insert(id, {BodyFrameId(tf_prefix_, name), next_marker_id_++});
+  const core::BodyFrames& frames = world.frames(id);
+  per_body_.Insert(id, {{BodyFrameId(tf_prefix_, core::TfFrameName(frames, name)), frames.origin},
+                        next_marker_id_++});
   body_topics_.Add(id, name);
+  joint_states_.OnBodyAdded(world, id);
 }
 
 void StatePublisher::OnBodyRemoved(const core::World& /*world*/, core::BodyId id) {
   deleted_marker_ids_.push_back(per_body_.at(id).marker_id);
   per_body_.Erase(id);
   body_topics_.Remove(id);
+  joint_states_.OnBodyRemoved(id);
 }
 
 void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
@@ -82,6 +87,7 @@ void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
   PublishBodyTopics(world, stamp);
   if (bodies_.subscribers > 0) PublishBodies(world, stamp);
   if (particles_.subscribers > 0) PublishParticles(world, stamp);
+  joint_states_.Publish(stamp);
   deleted_marker_ids_.clear();
 }
 
@@ -91,8 +97,10 @@ void StatePublisher::PublishTf(const core::World& world, const ros::Time& stamp)
   for (std::size_t body = 0; body < world.size(); ++body) {
     tf.transforms[body].header.stamp = stamp;
     tf.transforms[body].header.frame_id = world_frame_;
-    tf.transforms[body].child_frame_id = per_body_.at(world.id(body)).child_frame;
-    tf.transforms[body].transform = ToTransformMsg(world.state(body));
+    const BodyFrame& frame = per_body_.at(world.id(body)).frame;
+    tf.transforms[body].child_frame_id = frame.frame_id;
+    tf.transforms[body].transform =
+        ToFrameTransformMsg(world.model(body), world.state(body), frame.origin);
   }
   tf_.publisher.publish(tf);
 }
@@ -102,12 +110,12 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
     const core::BodyId id = world.id(body);
     const BodyTopics::Topics* topics = body_topics_.at(id);
     if (topics == nullptr) continue;  // not yet advertised
-    const std::string& child_frame = per_body_.at(id).child_frame;
+    const BodyFrame& frame = per_body_.at(id).frame;
     if (topics->pose.wanted()) {
       geometry_msgs::PoseStamped pose;
       pose.header.stamp = stamp;
       pose.header.frame_id = world_frame_;
-      pose.pose = ToPoseMsg(world.state(body));
+      pose.pose = ToFramePoseMsg(world.model(body), world.state(body), frame.origin);
       topics->pose.publisher.publish(pose);
     }
     if (topics->twist.wanted()) {
@@ -119,7 +127,7 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
     }
     if (topics->odom.wanted()) {
       topics->odom.publisher.publish(
-          ToOdometryMsg(world.model(body), world.state(body), world_frame_, child_frame, stamp));
+          ToOdometryMsg(world.model(body), world.state(body), world_frame_, frame, stamp));
     }
     const core::StepRecord* record = world.last_step_record(body);
     if (record == nullptr) continue;  // no step since start, reset, spawn or set state
@@ -132,11 +140,11 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
       inputs.body = body;
       inputs.step = world.step_count();
       topics->imu.publisher.publish(
-          ToImuMsg(world.model(body), world.state(body), inputs, imu_noise_, child_frame, stamp));
+          ToImuMsg(world.model(body), world.state(body), inputs, imu_noise_, frame, stamp));
     }
     if (topics->applied_wrench.wanted()) {
       topics->applied_wrench.publisher.publish(
-          ToAppliedWrenchMsg(world.state(body), record->wrench, child_frame, stamp));
+          ToAppliedWrenchMsg(world.model(body), world.state(body), record->wrench, frame, stamp));
     }
   }
 }

@@ -29,10 +29,25 @@ TEST(BodyFrames, APointMovesWithTheRigidVelocityField) {
   EXPECT_LT((origin.position_m - Eigen::Vector3d(5, -1, 0)).norm(), 1e-15);
   EXPECT_LT((origin.velocity_mps - Eigen::Vector3d(3, 0, 1)).norm(), 1e-14);
   // ComMotion undoes it.
-  const PointMotion com = ComMotion(R_WB, {0, 0, 3}, {-1, 0, 0}, origin.position_m,
-                                    origin.velocity_mps);
+  const PointMotion com =
+      ComMotion(R_WB, {0, 0, 3}, {-1, 0, 0}, origin.position_m, origin.velocity_mps);
   EXPECT_LT((com.position_m - state.position).norm(), 1e-15);
   EXPECT_LT((com.velocity_mps - LinearVelocity(model, state)).norm(), 1e-14);
+}
+
+TEST(BodyFrames, TheFrameOriginIsTheComOrTheReferenceOrigin) {
+  const BodyModel model = Dumbbell();
+  const Eigen::Quaterniond R_WB(Eigen::AngleAxisd(M_PI / 2, Eigen::Vector3d::UnitZ()));
+  const BodyState state = StateFromTwist(model, {5, 0, 0}, R_WB, {0, 0, 1}, {0, 0, 3});
+  EXPECT_EQ(FrameOriginPosition(model, state, FrameOrigin::kCom), state.position);
+  EXPECT_EQ(FrameOriginVelocity(model, state, FrameOrigin::kCom), LinearVelocity(model, state));
+  // As in APointMovesWithTheRigidVelocityField.
+  EXPECT_LT((FrameOriginPosition(model, state, FrameOrigin::kReference) - Eigen::Vector3d(5, -1, 0))
+                .norm(),
+            1e-15);
+  EXPECT_LT((FrameOriginVelocity(model, state, FrameOrigin::kReference) - Eigen::Vector3d(3, 0, 1))
+                .norm(),
+            1e-14);
 }
 
 }  // namespace

@@ -287,6 +287,25 @@ TEST(World, RecordsTheStartVelocityAndTotalWrenchOfARequestedStepOnly) {
   EXPECT_NE(world.last_step_record(0), nullptr);
 }
 
+TEST(World, RecordsTheStartVelocityOfTheBodyFramesOrigin) {
+  // Two unit masses at x = 0 and 2: the reference origin is 1 m from the COM
+  // along −x. Spinning at 3 rad/s about z, at rest otherwise, it moves at
+  // ω × (−1, 0, 0) = (0, −3, 0).
+  const BodyModel dumbbell("dumbbell", {{1.0, {0, 0, 0}}, {1.0, {2, 0, 0}}});
+  const BodyState spinning =
+      StateFromTwist(dumbbell, Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(),
+                     Eigen::Vector3d::Zero(), {0, 0, 3});
+  BodyFrames reference;
+  reference.origin = FrameOrigin::kReference;
+  World world({dumbbell, BodyModel("referenced", {{1.0, {0, 0, 0}}, {1.0, {2, 0, 0}}})},
+              {spinning, spinning}, WorldOptions{}, {}, {BodyFrames{}, reference});
+  world.RecordNextStep();
+  world.Step();
+  EXPECT_EQ(world.last_step_record(0)->start_velocity_mps, Eigen::Vector3d::Zero());
+  EXPECT_LT((world.last_step_record(1)->start_velocity_mps - Eigen::Vector3d(0, -3, 0)).norm(),
+            1e-15);
+}
+
 TEST(World, ResetRestoresBodiesAndClearsWrenchesButTimeGoesOn) {
   World world = MakeWorld(WorldOptions{});
   ParticleWrench push;

@@ -6,7 +6,9 @@
 //
 // Scene (body_wrenches.test): "cube", M = 4 kg, isotropic I = 0.08 kg m²,
 // at rest at (0, 0, 1), turned 90° about z (body x = world y). "other" at
-// rest. No gravity, 1000 Hz. Every check is paused ~step: a constant force
+// rest. No gravity, 1000 Hz. The cube's site "cube_tip" is at body (0.1, 0,
+// 0) = world (0, 0.1, 0) with site x = body y = world −x; "other" has a site
+// "other_tip". Every check is paused ~step: a constant force
 // gives Δp = F t and Δx = F t² / (2M) exactly (to round-off).
 #include <cmath>
 
@@ -130,13 +132,14 @@ TEST_F(BodyWrenches, UnknownFrameOrNaNIsRejectedAndCounted) {
   const double nan_before = *diag.Get("rejected_non_finite");
   const double all_before = *diag.Get("rejected_messages");
   PublishBodyWrench(Wrench(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, "other"));  // another body's frame
+  PublishBodyWrench(Wrench(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, "other_tip"));  // another body's site
   PublishBodyWrench(Wrench(std::nan(""), 0.0, 0.0, 0.0, 0.0, 0.0));
   rigid_body_sim::BodyStateArray s;
   ASSERT_TRUE(sim.StepAndGet(10, &s));
   EXPECT_VEC3_NEAR(Cube(s).linear_momentum, 0.0, 0.0, 0.0, 0.0);
-  EXPECT_TRUE(WaitFor([&] { return *diag.Get("rejected_unknown_frame") == frames_before + 1; }, 3.0));
+  EXPECT_TRUE(WaitFor([&] { return *diag.Get("rejected_unknown_frame") == frames_before + 2; }, 3.0));
   EXPECT_TRUE(WaitFor([&] { return *diag.Get("rejected_non_finite") == nan_before + 1; }, 3.0));
-  EXPECT_EQ(*diag.Get("rejected_messages"), all_before + 2);
+  EXPECT_EQ(*diag.Get("rejected_messages"), all_before + 3);
 }
 
 TEST_F(BodyWrenches, JobActsExactlyOverItsWindow) {
@@ -171,6 +174,41 @@ TEST_F(BodyWrenches, JobAtAPointTurnsTheBodyAsAParticleThereWould) {
   // |τ| dt / I · dt = 1.25e-6 rad, which moves the lever by that angle:
   // |ΔL − τ dt| <= |τ| dt · 1.25e-6 ≈ 1.3e-10.
   EXPECT_VEC3_NEAR(Cube(s).angular_momentum, 0.0, 0.0, -0.1 * kDt, 1.3e-10);
+}
+
+// 1 N along site x (world −x) at the site, world (0, 0.1, 0) from the COM:
+// τ = (0, 0.1, 0) × (−1, 0, 0) = (0, 0, 0.1) N m in the first step. A force
+// in site axes turns with the body, by at most |τ| dt² / I = 1.5e-6 rad over
+// the step (with the topic test's couple), so Δp and ΔL are F dt and τ dt
+// within that fraction of them.
+constexpr double kSiteTorque_Nm = 0.1;
+constexpr double kSiteTurn_rad = 1.5e-6;
+
+TEST_F(BodyWrenches, ATopicWrenchAtASiteActsThereInItsAxes) {
+  auto& sim = TheSim();
+  PublishBodyWrench(Wrench(1.0, 0.0, 0.0, 0.0, 0.0, 0.02, "cube_tip"));
+  rigid_body_sim::BodyStateArray s;
+  ASSERT_TRUE(sim.StepAndGet(1, &s));
+  EXPECT_VEC3_NEAR(Cube(s).linear_momentum, -kDt, 0.0, 0.0, kDt * kSiteTurn_rad);
+  // The couple's axis, site z, is body z and world z.
+  EXPECT_VEC3_NEAR(Cube(s).angular_momentum, 0.0, 0.0, (kSiteTorque_Nm + 0.02) * kDt,
+                   0.12 * kDt * kSiteTurn_rad);
+}
+
+TEST_F(BodyWrenches, AJobInASiteFrameTakesItsAxesAndPointThere) {
+  auto& sim = TheSim();
+  // The point is the site's origin, given in the site's frame.
+  const auto r = Apply("cube", 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0, "cube_tip");
+  ASSERT_TRUE(r.success) << r.message;
+  rigid_body_sim::BodyStateArray s;
+  ASSERT_TRUE(sim.StepAndGet(1, &s));
+  EXPECT_VEC3_NEAR(Cube(s).linear_momentum, -kDt, 0.0, 0.0, kDt * kSiteTurn_rad);
+  EXPECT_VEC3_NEAR(Cube(s).angular_momentum, 0.0, 0.0, kSiteTorque_Nm * kDt,
+                   kSiteTorque_Nm * kDt * kSiteTurn_rad);
+  // Another body's site is no frame for this one.
+  const auto refused = Apply("cube", 1.0, 0.0, 0.0, 0.0, 0.0, 0.0, -1.0, "other_tip");
+  EXPECT_FALSE(refused.success);
+  EXPECT_NE(refused.message.find("other_tip"), std::string::npos) << refused.message;
 }
 
 TEST_F(BodyWrenches, JobsAddUpAndClearBodyWrenchesStopsThem) {

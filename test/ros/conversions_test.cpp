@@ -24,9 +24,6 @@ TEST(Conversions, BodyStateCarriesTheStateAndWhatFollowsFromIt) {
   EXPECT_EQ(msg.twist.angular.y, omega.y());
   EXPECT_EQ(msg.angular_momentum.z, 0.03);
   EXPECT_DOUBLE_EQ(msg.kinetic_energy, core::KineticEnergy(box, state));
-  const geometry_msgs::Transform transform = ToTransformMsg(state);
-  EXPECT_EQ(transform.translation.z, 3.0);
-  EXPECT_EQ(transform.rotation.z, state.orientation.z());
 }
 
 TEST(Conversions, BodyFrameIdsHaveNoLeadingSlash) {

@@ -66,6 +66,13 @@ struct PointMotion {
 PointMotion MotionOfPoint(const BodyModel& model, const BodyState& state,
                           const Eigen::Vector3d& offset_B);
 
+// The origin of the body's frame, world: x and v for kCom (nothing computed),
+// MotionOfPoint at FrameOriginOffset for kReference.
+Eigen::Vector3d FrameOriginPosition(const BodyModel& model, const BodyState& state,
+                                    FrameOrigin origin);
+Eigen::Vector3d FrameOriginVelocity(const BodyModel& model, const BodyState& state,
+                                    FrameOrigin origin);
+
 // The COM's position and velocity of a body whose point at `offset_B` is at
 // `position_m` and moves at `velocity_mps` while it turns at ω_W in the
 // orientation `orientation` (the inverse of MotionOfPoint, for initial states

@@ -14,6 +14,7 @@
 namespace rigid_body_sim::core {
 
 class Integrator;
+class ExactFreeFlow;
 
 // Bodies handed to a scheme together: their indices and the columns (of a
 // BodyStore) that their steps read and write, indexed by those indices.
@@ -23,6 +24,9 @@ struct BodyBatch {
   BodyState* states = nullptr;
   const std::size_t* indices = nullptr;
   std::size_t size = 0;
+  // The flows kept per body, for a scheme that continues them
+  // (Integrator::continues_free_flows); null otherwise.
+  ExactFreeFlow* free_flows = nullptr;
 
   const std::size_t* begin() const { return indices; }
   const std::size_t* end() const { return indices + size; }
@@ -55,6 +59,9 @@ class Integrator {
   // as Step would, several at a time where a scheme can; this default steps
   // them one by one.
   virtual void StepLoaded(const BodyBatch& batch, double dt_s) const;
+  // Whether StepFree and StepLoaded continue each body's torque-free flow
+  // from BodyBatch::free_flows, a column the World then keeps for it alone.
+  virtual bool continues_free_flows() const { return false; }
 
   // The rate [rad/s] at which this scheme's free rotation leaves its exact
   // flows over a step of dt_s from `state`: the local error grows with dt

@@ -10,8 +10,9 @@
 namespace rigid_body_sim::core {
 
 struct StepRecord {
-  Eigen::Vector3d start_velocity_mps =
-      Eigen::Vector3d::Zero();  // v = p / M at the step's start, world
+  // The velocity of the body frame's origin at the step's start, world
+  // (FrameOriginVelocity: p / M for a COM frame).
+  Eigen::Vector3d start_velocity_mps = Eigen::Vector3d::Zero();
   // Held wrenches, gravity and damping, evaluated at the step's start state:
   // force at the COM and torque about it, world axes.
   Wrench wrench;

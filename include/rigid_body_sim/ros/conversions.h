@@ -8,7 +8,6 @@
 #include <rigid_body_sim/BodyStateArray.h>
 
 #include <geometry_msgs/Pose.h>
-#include <geometry_msgs/Transform.h>
 #include <geometry_msgs/Twist.h>
 #include <geometry_msgs/Vector3.h>
 #include <ros/time.h>
@@ -26,8 +25,6 @@ Eigen::Vector3d FromVector3Msg(const geometry_msgs::Vector3& msg);
 
 // COM position and body-frame orientation, world.
 geometry_msgs::Pose ToPoseMsg(const core::BodyState& state);
-// The same pose as the transform world → body frame.
-geometry_msgs::Transform ToTransformMsg(const core::BodyState& state);
 // COM velocity and angular velocity, world axes.
 geometry_msgs::Twist ToTwistMsg(const core::BodyModel& model, const core::BodyState& state);
 BodyState ToBodyState(const core::BodyModel& model, const core::BodyState& state);

@@ -1,7 +1,7 @@
 // The ROS face of a World (doc/node.md): the paced stepping loop, wired to the
 // parts that take requests and wrenches in (ServiceFront, WrenchIntake), wait
-// for lockstep controllers (LockstepDriver), send states out (StatePublisher)
-// and report (NodeDiagnostics). No physics here.
+// for lockstep controllers (LockstepDriver), send states out (StatePublisher,
+// StaticFrames) and report (NodeDiagnostics). No physics here.
 //
 // Threading: the world is touched only by the thread that calls Run(). The
 // loop steps the world when the pacer says a step is due (and, under
@@ -32,6 +32,7 @@
 #include "rigid_body_sim/ros/service_front.h"
 #include "rigid_body_sim/ros/state_hash_worker.h"
 #include "rigid_body_sim/ros/state_publisher.h"
+#include "rigid_body_sim/ros/static_frames.h"
 #include "rigid_body_sim/ros/step_lattice.h"
 #include "rigid_body_sim/ros/world_editor.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
@@ -75,6 +76,7 @@ class SimulationNode : public LoopControl {
   core::StepPacer pacer_;
   WrenchIntake intake_;
   StatePublisher publisher_;
+  StaticFrames static_frames_;
   StateHashWorker state_hashes_;
   NodeDiagnostics diagnostics_;
   WorldEditor editor_;  // the front end's changes to the world, told to diagnostics_

@@ -1,6 +1,7 @@
 // Every outbound per-cycle message (doc/node.md, "Topics and services"): /clock, /tf, each
-// body's own topics (BodyTopics), ~bodies and ~particles, all from the world's
-// state at one stamp, and each built only while someone subscribes.
+// body's own topics (BodyTopics), ~bodies, ~particles and ~joint_states
+// (HeldJointStates), all from the world's state at one stamp, and each built
+// only while someone subscribes.
 #pragma once
 
 #include <string>
@@ -10,7 +11,9 @@
 #include <Eigen/Core>
 
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_outputs.h"
 #include "rigid_body_sim/ros/body_topics.h"
+#include "rigid_body_sim/ros/held_joint_states.h"
 #include "rigid_body_sim/ros/scene_params.h"
 
 namespace rigid_body_sim {
@@ -56,7 +59,7 @@ class StatePublisher : public core::BodyListener {
   const std::string tf_prefix_;
   const core::ImuNoise imu_noise_;
   struct PerBody {
-    std::string child_frame;  // its TF frame
+    BodyFrame frame;  // its TF frame and origin
     // Its ~particles marker id: its scene index, then one more per spawn, so
     // that a delete does not renumber the others in rviz.
     int marker_id = 0;
@@ -65,6 +68,7 @@ class StatePublisher : public core::BodyListener {
   int next_marker_id_ = 0;
   std::vector<int> deleted_marker_ids_;  // DELETEs for the next ~particles
   BodyTopics body_topics_;
+  HeldJointStates joint_states_;
   CountedPublisher tf_;  // /tf as tf2_ros::TransformBroadcaster advertises it
   CountedPublisher bodies_;
   CountedPublisher particles_;

@@ -1,5 +1,6 @@
 #include "rigid_body_sim/core/integrators/exact_free.h"
 
+#include "rigid_body_sim/core/integrators/exact_free_flow.h"
 #include "rigid_body_sim/core/reference/torque_free.h"
 #include "step_parts.h"
 
@@ -10,19 +11,46 @@ void ExactFreeIntegrator::Step(const BodyModel& model, const Load* load, double 
   if (load != nullptr) Kick(*load, 0.0, 0.5 * dt_s, state);
   const Damping damping = DampingOf(load);
   DampedDrift(model.inverse_mass(), damping.linear_per_s, dt_s, state);
-  // The free flow in the principal frame: q_WP = q_WB ⊗ q_BP, Π = R_WPᵀ L;
-  // L in the world does not change. Under angular damping it is the
-  // undamped flow over the rescaled time, L decaying meanwhile: exact too.
-  const Eigen::Quaterniond& body_from_principal = model.principal_axes();
-  const Eigen::Quaterniond principal_orientation = state->orientation * body_from_principal;
-  const TorqueFreeMotion motion(model.principal_moments(),
-                                principal_orientation.conjugate() * state->angular_momentum,
-                                principal_orientation);
+  // L in the world does not change. Under angular damping the rotation is
+  // the undamped flow over the rescaled time, L decaying meanwhile: exact too.
+  const TorqueFreeMotion motion = MotionFrom(model, *state);
   const Decay spin = DecayOver(damping.angular_per_s, dt_s);
   state->orientation =
-      (motion.Orientation(spin.elapsed_s) * body_from_principal.conjugate()).normalized();
+      (motion.Orientation(spin.elapsed_s) * model.principal_axes().conjugate()).normalized();
   state->angular_momentum *= spin.factor;
   if (load != nullptr) Kick(*load, dt_s, 0.5 * dt_s, state);
+}
+
+void ExactFreeIntegrator::StepFree(const BodyBatch& batch, double dt_s) const {
+  if (batch.free_flows == nullptr) {
+    Integrator::StepFree(batch, dt_s);
+    return;
+  }
+  for (const std::size_t body : batch) {
+    const BodyModel& model = batch.models[body];
+    BodyState& state = batch.states[body];
+    DampedDrift(model.inverse_mass(), 0.0, dt_s, &state);
+    state.orientation = batch.free_flows[body].Advance(model, state, dt_s);
+  }
+}
+
+void ExactFreeIntegrator::StepLoaded(const BodyBatch& batch, double dt_s) const {
+  for (const std::size_t body : batch) {
+    const BodyModel& model = batch.models[body];
+    const HeldLoads& load = batch.loads[body];
+    BodyState& state = batch.states[body];
+    const Damping damping = load.damping();
+    // A torque or angular damping changes L, and with it the whole flow:
+    // the uncached step builds it once, as a kept flow would.
+    if (batch.free_flows == nullptr || load.has_torque() || damping.angular_per_s != 0.0) {
+      Step(model, &load, dt_s, &state);
+      continue;
+    }
+    Kick(load, 0.0, 0.5 * dt_s, &state);
+    DampedDrift(model.inverse_mass(), damping.linear_per_s, dt_s, &state);
+    state.orientation = batch.free_flows[body].Advance(model, state, dt_s);
+    Kick(load, dt_s, 0.5 * dt_s, &state);
+  }
 }
 
 double ExactFreeIntegrator::RotationErrorRate(const BodyModel&, const BodyState&, double) const {

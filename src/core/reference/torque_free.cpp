@@ -162,7 +162,7 @@ TorqueFreeMotion::TorqueFreeMotion(const Eigen::Vector3d& principal_moments,
   precession_rate_ = p.norm() / principal_moments[cn_axis_];
   precession_gain_ = (about_axis_3 ? -1.0 : 1.0) * p.norm() * (l3 - l1) / (l1 * l3 * rate_);
   third_kind_start_ = PhaseAt(0.0, true).third_kind;
-  alignment_ = initial_orientation_ * MomentumFrame(p).conjugate();
+  alignment_ = initial_orientation_ * MomentumFrame(p, cn_axis_).conjugate();
 }
 
 TorqueFreeMotion::Phase TorqueFreeMotion::PhaseAt(double t_s, bool with_third_kind) const {
@@ -209,10 +209,10 @@ Eigen::Vector3d TorqueFreeMotion::MomentumAt(const Phase& phase) const {
   return momentum;
 }
 
-Eigen::Quaterniond TorqueFreeMotion::MomentumFrame(const Eigen::Vector3d& momentum) const {
+Eigen::Quaterniond TorqueFreeMotion::MomentumFrame(const Eigen::Vector3d& momentum, int cn_axis) {
   // Rows u1, u2, n with n = Π/G, u2 ∥ e_c × n, u1 = u2 × n: a proper rotation.
   const Eigen::Vector3d n = momentum.normalized();
-  const Eigen::Vector3d u2 = Eigen::Vector3d::Unit(cn_axis_).cross(n).normalized();
+  const Eigen::Vector3d u2 = Eigen::Vector3d::Unit(cn_axis).cross(n).normalized();
   Eigen::Matrix3d frame;
   frame.row(0) = u2.cross(n);
   frame.row(1) = u2;
@@ -246,10 +246,18 @@ Eigen::Quaterniond TorqueFreeMotion::Orientation(double t_s) const {
       const double precession =
           precession_rate_ * t_s + precession_gain_ * (phase.third_kind - third_kind_start_);
       return (alignment_ * Eigen::AngleAxisd(precession, Eigen::Vector3d::UnitZ()) *
-              MomentumFrame(MomentumAt(phase)))
+              MomentumFrame(MomentumAt(phase), cn_axis_))
           .normalized();
     }
   }
+}
+
+std::optional<TorqueFreeMotion::Elliptic> TorqueFreeMotion::elliptic() const {
+  if (regime_ != Regime::kElliptic) return std::nullopt;
+  return Elliptic{
+      cn_axis_,         amplitudes_,     modulus_,        complementary_squared_, rate_,
+      phase_start_,     quarter_period_, characteristic_, complete_third_kind_,   precession_rate_,
+      precession_gain_, alignment_};
 }
 
 double TorqueFreeMotion::period() const {

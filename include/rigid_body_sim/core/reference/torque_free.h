@@ -38,6 +38,30 @@ class TorqueFreeMotion {
   // Modulus k of the Jacobi functions (0 unless three distinct moments).
   double modulus() const { return modulus_; }
 
+  // The constants of the elliptic regime (three distinct moments, k < 1),
+  // from which ExactFreeFlow continues the motion step by step: Π_c = A_c cn,
+  // Π_2 = A_2 sn, Π_d = A_d dn at u = νt + u0, and
+  // ψ(t) = ψ̇_0 t + gain (Π(n; am u) − Π(n; am u0)).
+  struct Elliptic {
+    int cn_axis;                   // c; the dn axis is 2 − c
+    Eigen::Vector3d amplitudes;    // A_1, A_2, A_3, signed
+    double modulus;                // k
+    double complementary_squared;  // k'²
+    double rate_per_s;             // ν
+    double phase_start;            // u0, in [−2K, 2K]
+    double quarter_period;         // K(k)
+    double characteristic;         // n < 0
+    double complete_third_kind;    // Π(n, k)
+    double precession_rate_per_s;  // ψ̇_0
+    double precession_gain;
+    Eigen::Quaterniond alignment;  // R_WP(0) Q(Π(0))ᵀ
+  };
+  // Those constants, or nullopt in the other regimes.
+  std::optional<Elliptic> elliptic() const;
+
+  // A rotation Q(Π) with Q Π = G e_z, built on the axis e_c (Π never ±G e_c).
+  static Eigen::Quaterniond MomentumFrame(const Eigen::Vector3d& momentum, int cn_axis);
+
  private:
   enum class Regime {
     kSteady,      // Π constant: at rest, or spinning about a principal axis
@@ -53,8 +77,6 @@ class TorqueFreeMotion {
 
   Phase PhaseAt(double t_s, bool with_third_kind) const;
   Eigen::Vector3d MomentumAt(const Phase& phase) const;
-  // A rotation Q(Π) with Q Π = G e_z, built on the axis e_c (Π never ±G e_c).
-  Eigen::Quaterniond MomentumFrame(const Eigen::Vector3d& momentum) const;
 
   Regime regime_ = Regime::kSteady;
   Eigen::Vector3d initial_momentum_;

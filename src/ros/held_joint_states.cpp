@@ -1,0 +1,52 @@
+#include "rigid_body_sim/ros/held_joint_states.h"
+
+#include <algorithm>
+
+namespace rigid_body_sim {
+namespace {
+
+constexpr std::uint32_t kQueueSize = 10;
+
+}  // namespace
+
+HeldJointStates::HeldJointStates(ros::NodeHandle private_nh) {
+  int* subscribers = &joint_states_.subscribers;
+  joint_states_.publisher = private_nh.advertise<sensor_msgs::JointState>(
+      "joint_states", kQueueSize,
+      [subscribers](const ros::SingleSubscriberPublisher&) { ++*subscribers; },
+      [subscribers](const ros::SingleSubscriberPublisher&) { --*subscribers; });
+}
+
+void HeldJointStates::OnBodyAdded(const core::World& world, core::BodyId id) {
+  const std::vector<std::string>& joints = world.frames(id).held_joints;
+  if (joints.empty()) return;
+  bodies_.emplace_back(id, joints);
+  stale_ = true;
+}
+
+void HeldJointStates::OnBodyRemoved(core::BodyId id) {
+  const auto body = std::find_if(bodies_.begin(), bodies_.end(),
+                                 [id](const auto& entry) { return entry.first == id; });
+  if (body == bodies_.end()) return;
+  bodies_.erase(body);
+  stale_ = true;
+}
+
+void HeldJointStates::Publish(const ros::Time& stamp) {
+  if (bodies_.empty() || !joint_states_.wanted()) return;
+  if (stale_) Rebuild();
+  msg_.header.stamp = stamp;
+  joint_states_.publisher.publish(msg_);
+}
+
+void HeldJointStates::Rebuild() {
+  msg_.name.clear();
+  for (const auto& body : bodies_) {
+    msg_.name.insert(msg_.name.end(), body.second.begin(), body.second.end());
+  }
+  msg_.position.assign(msg_.name.size(), 0.0);
+  msg_.velocity.assign(msg_.name.size(), 0.0);
+  stale_ = false;
+}
+
+}  // namespace rigid_body_sim

@@ -1,0 +1,200 @@
+#!/usr/bin/python3
+"""A body's frames in the outputs (doc/node.md, "Frames of a body";
+body_frames.test):
+
+- `arm` (`frame: reference`, x̄_CM = (0.3, 0, 0), spinning at 2 rad/s about
+  z under gravity): /tf, ~arm/pose and ~arm/odom give the reference origin,
+  x + A(−x̄_CM), and its velocity v + ω × A(−x̄_CM), in body axes for the
+  odometry; ~arm/imu reads the specific force of that origin (its finite
+  difference across the step; about the centripetal −ω² r, as free fall
+  cancels g); ~arm/applied_wrench gives gravity's torque about the origin,
+  x̄_CM × F in body axes;
+- its sites are on /tf_static, children of sim/arm, placed from the
+  reference origin; a spawned body's sites join them and leave with it;
+- `quad` (from config/quadrotor.urdf): its TF frame is its root link,
+  sim/base_link; its links are not on /tf_static; ~joint_states names its
+  four rotor joints at 0, stamped as ~bodies.
+"""
+import math
+import threading
+import time
+import unittest
+
+import numpy as np
+import rospy
+import rostest
+from geometry_msgs.msg import PoseStamped, WrenchStamped
+from nav_msgs.msg import Odometry
+from rigid_body_sim.msg import BodyStateArray
+from rigid_body_sim.testing import SimClient
+from sensor_msgs.msg import Imu, JointState
+from tf2_msgs.msg import TFMessage
+
+PKG = 'rigid_body_sim'
+NODE = '/rigid_body_sim'
+G = np.array([0.0, 0.0, -9.81])
+MASS = 4.0
+COM = np.array([0.3, 0.0, 0.0])  # x̄_CM, reference coordinates
+HALF = math.sqrt(0.5)
+ROTORS = ['rotor_0_joint', 'rotor_1_joint', 'rotor_2_joint', 'rotor_3_joint']
+# Position round-off of a rotated 0.3 m offset; velocities of ~1 m/s.
+TIGHT = 1e-12
+# An IMU's finite difference of velocities ~1 m/s over dt = 1e-3 s.
+DIFFERENCE = 1e-9
+SPAWNED = """
+name: tool
+particles: [{mass: 1.0, position: [0.0, 0.0, 0.0]}, {mass: 1.0, position: [0.2, 0.0, 0.0]}]
+sites: [{name: tool_grip, position: [0.2, 0.0, 0.0]}]
+position: [0.0, -3.0, 0.0]
+gravity_scale: 0.0
+"""
+
+
+def rotate(q, v):
+    """v turned by the unit quaternion q = (x, y, z, w)."""
+    u, w = np.asarray(q[:3]), q[3]
+    return v + 2.0 * np.cross(u, np.cross(u, v) + w * v)
+
+
+def xyz(msg):
+    return np.array([msg.x, msg.y, msg.z])
+
+
+def xyzw(msg):
+    return np.array([msg.x, msg.y, msg.z, msg.w])
+
+
+class BodyFrames(unittest.TestCase):
+    @classmethod
+    def setUpClass(cls):
+        rospy.init_node('body_frames_test')
+        cls.lock = threading.Lock()
+        cls.messages = {name: [] for name in (
+            'bodies', 'tf', 'tf_static', 'pose', 'odom', 'imu', 'wrench', 'joints')}
+        for name, topic, msg_type in (
+                ('bodies', NODE + '/bodies', BodyStateArray), ('tf', '/tf', TFMessage),
+                ('tf_static', '/tf_static', TFMessage), ('pose', NODE + '/arm/pose', PoseStamped),
+                ('odom', NODE + '/arm/odom', Odometry), ('imu', NODE + '/arm/imu', Imu),
+                ('wrench', NODE + '/arm/applied_wrench', WrenchStamped),
+                ('joints', NODE + '/joint_states', JointState)):
+            rospy.Subscriber(topic, msg_type, cls.on(cls.messages[name]), queue_size=1000)
+        cls.sim = SimClient(NODE)
+
+    @classmethod
+    def on(cls, messages):
+        def callback(msg):
+            with cls.lock:
+                messages.append(msg)
+        return callback
+
+    def wait_for(self, name, predicate, what, timeout=20.0, since=0):
+        """The last message on `name`, from the `since`-th on, that meets
+        `predicate`."""
+        deadline = time.monotonic() + timeout
+        while time.monotonic() < deadline:
+            with self.lock:
+                found = [m for m in self.messages[name][since:] if predicate(m)]
+            if found:
+                return found[-1]
+            time.sleep(0.02)
+        self.fail('no %s within %g s' % (what, timeout))
+
+    def at(self, name, stamp):
+        return self.wait_for(name, lambda m: self.stamp_of(m) == stamp,
+                             '%s at %d ns' % (name, stamp))
+
+    @staticmethod
+    def stamp_of(msg):
+        if isinstance(msg, TFMessage):
+            return msg.transforms[0].header.stamp.to_nsec() if msg.transforms else None
+        return msg.header.stamp.to_nsec()
+
+    @staticmethod
+    def static_frames(msg):
+        return {t.child_frame_id: t for t in msg.transforms}
+
+    def test_reference_frame_sites_and_joints(self):
+        # Every output flows (its topics are advertised after start) before the steps.
+        for name in ('pose', 'odom', 'imu', 'wrench', 'joints'):
+            self.wait_for(name, lambda m: True, 'message on ' + name)
+        self.sim.pause()
+        previous = self.sim.step(1)
+        current = self.sim.step(1)
+        stamp = current.stamp.to_nsec()
+        arm, before = current.states['arm'], previous.states['arm']
+        r = rotate(arm.orientation, -COM)  # COM → reference origin, world
+        origin = arm.position + r
+        velocity = arm.linear_velocity + np.cross(arm.angular_velocity, r)
+        to_body = lambda v: rotate(arm.orientation * [-1, -1, -1, 1], v)
+
+        tf = {t.child_frame_id: t for t in self.at('tf', stamp).transforms}
+        self.assertEqual(tf['sim/arm'].header.frame_id, 'world')
+        np.testing.assert_allclose(xyz(tf['sim/arm'].transform.translation), origin, atol=TIGHT)
+        np.testing.assert_array_equal(xyzw(tf['sim/arm'].transform.rotation), arm.orientation)
+        self.assertIn('sim/base_link', tf, 'a URDF body is its root link')
+        self.assertNotIn('sim/quad', tf)
+
+        pose = self.at('pose', stamp)
+        np.testing.assert_allclose(xyz(pose.pose.position), origin, atol=TIGHT)
+        odom = self.at('odom', stamp)
+        self.assertEqual(odom.child_frame_id, 'sim/arm')
+        np.testing.assert_allclose(xyz(odom.pose.pose.position), origin, atol=TIGHT)
+        np.testing.assert_allclose(xyz(odom.twist.twist.linear), to_body(velocity), atol=TIGHT)
+        np.testing.assert_allclose(xyz(odom.twist.twist.angular),
+                                   to_body(arm.angular_velocity), atol=TIGHT)
+
+        # The IMU: the origin's velocity across the step, less g.
+        r_before = rotate(before.orientation, -COM)
+        v_before = before.linear_velocity + np.cross(before.angular_velocity, r_before)
+        specific_force = to_body((velocity - v_before) / self.sim.dt - G)
+        imu = self.at('imu', stamp)
+        self.assertEqual(imu.header.frame_id, 'sim/arm')
+        np.testing.assert_allclose(xyz(imu.linear_acceleration), specific_force, atol=DIFFERENCE)
+        # About the centripetal −ω² r = (1.2, 0, 0) in body axes, to ~ω·dt of it.
+        np.testing.assert_allclose(xyz(imu.linear_acceleration), [1.2, 0.0, 0.0], atol=3e-3)
+
+        # Gravity's torque about the origin: x̄_CM × M Aᵀg.
+        wrench = self.at('wrench', stamp)
+        self.assertEqual(wrench.header.frame_id, 'sim/arm')
+        force = to_body(MASS * G)
+        np.testing.assert_allclose(xyz(wrench.wrench.force), force, atol=TIGHT)
+        np.testing.assert_allclose(xyz(wrench.wrench.torque), np.cross(COM, force), atol=TIGHT)
+
+        joints = self.at('joints', stamp)
+        self.assertEqual(sorted(joints.name), ROTORS)
+        self.assertEqual(list(joints.position), [0.0] * 4)
+        self.assertEqual(list(joints.velocity), [0.0] * 4)
+
+        # The sites, from the reference origin; the URDF links are not there.
+        static = self.static_frames(self.wait_for(
+            'tf_static', lambda m: 'sim/arm_tip' in self.static_frames(m), 'the sites'))
+        self.assertEqual(sorted(static), ['sim/arm_mount', 'sim/arm_tip'])
+        tip, mount = static['sim/arm_tip'], static['sim/arm_mount']
+        self.assertEqual(tip.header.frame_id, 'sim/arm')
+        np.testing.assert_array_equal(xyz(tip.transform.translation), [0.5, 0.0, 0.0])
+        # The reader normalises the orientation: to round-off.
+        np.testing.assert_allclose(xyzw(tip.transform.rotation), [0.0, 0.0, HALF, HALF],
+                                   atol=1e-15)
+        self.assertEqual(mount.header.frame_id, 'sim/arm')
+        np.testing.assert_array_equal(xyz(mount.transform.translation), [0.0, 0.1, 0.0])
+        np.testing.assert_array_equal(xyzw(mount.transform.rotation), [0.0, 0.0, 0.0, 1.0])
+
+        # A spawned body's site joins the set (from its COM, (0.1, 0, 0)), and leaves with it.
+        self.sim.spawn(SPAWNED)
+        static = self.static_frames(self.wait_for(
+            'tf_static', lambda m: 'sim/tool_grip' in self.static_frames(m), 'the spawned site'))
+        self.assertEqual(sorted(static), ['sim/arm_mount', 'sim/arm_tip', 'sim/tool_grip'])
+        self.assertEqual(static['sim/tool_grip'].header.frame_id, 'sim/tool')
+        np.testing.assert_allclose(xyz(static['sim/tool_grip'].transform.translation),
+                                   [0.1, 0.0, 0.0], atol=1e-15)
+        with self.lock:
+            sent = len(self.messages['tf_static'])
+        self.sim.delete('tool')
+        static = self.static_frames(self.wait_for(
+            'tf_static', lambda m: 'sim/tool_grip' not in self.static_frames(m),
+            'the set without it', since=sent))
+        self.assertEqual(sorted(static), ['sim/arm_mount', 'sim/arm_tip'])
+
+
+if __name__ == '__main__':
+    rostest.rosrun(PKG, 'body_frames_test', BodyFrames)
