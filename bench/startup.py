@@ -32,6 +32,14 @@ Writes bench/results/startup.md (medians; also printed) and one CSV row per
 trial to bench/results/startup.csv.
 
   bench/startup.py [--bodies 10000] [--trials 3] [--workspace PATH] [--port 11397] [--out DIR]
+
+With --launch FILE (a launch file of the package, e.g. quadrotor.launch) it
+times that launch instead, as a user starts it: from just before
+`roslaunch rigid_body_sim FILE` (on a fresh private master, subscribed to
+~bodies before) to the first ~bodies message, --trials times; writes
+bench/results/startup_<FILE without .launch>.md and .csv.
+
+  bench/startup.py --launch quadrotor.launch [--trials 5] [--workspace PATH]
 """
 
 import argparse
@@ -69,7 +77,9 @@ def parse_args():
                         help="window after the start-up for overruns with nothing left to advertise [s]")
     parser.add_argument("--only", choices=["true", "false"], default=None,
                         help="run only this per_body_topics value")
-    parser.add_argument("--one-trial", choices=["true", "false"], default=None, help=argparse.SUPPRESS)
+    parser.add_argument("--launch", default=None,
+                        help="time `roslaunch rigid_body_sim LAUNCH` to its first ~bodies instead (e.g. quadrotor.launch)")
+    parser.add_argument("--one-trial", choices=["true", "false", "launch"], default=None, help=argparse.SUPPRESS)
     parser.add_argument("--log-dir", default=None, help=argparse.SUPPRESS)
     return parser.parse_args()
 
@@ -254,6 +264,39 @@ def run_one_trial():
         procs.stop_all()
 
 
+def run_launch_trial():
+    """One start of --launch; prints {"first_bodies_s": ...} on stdout."""
+    import rospy
+    from node_harness import start_master
+    os.sched_setaffinity(0, {ARGS.bench_cpu})
+    log_dir = ARGS.log_dir or tempfile.mkdtemp(prefix="startup_logs_")
+    procs = Processes()
+    try:
+        start_master(procs, ARGS.port, ARGS.bench_cpu, log_dir)
+        rospy.init_node("startup_bench", anonymous=True, disable_signals=True)
+        first = threading.Event()
+        times = []
+
+        def on_bodies(_msg):
+            if not times:
+                times.append(time.monotonic())
+                first.set()
+
+        sub = rospy.Subscriber(NS + "/bodies", rospy.AnyMsg, on_bodies, queue_size=2)
+        time.sleep(0.5)
+        launch_log = os.path.join(log_dir, "launch.log")
+        t0 = time.monotonic()
+        launch = procs.start(["roslaunch", "rigid_body_sim", ARGS.launch], launch_log)
+        if not first.wait(60.0) or launch.poll() is not None:
+            raise RuntimeError("no first ~bodies within 60 s (log %s)" % launch_log)
+        sub.unregister()
+        print(json.dumps({"first_bodies_s": times[0] - t0, "log_dir": log_dir,
+                          "loadavg1": os.getloadavg()[0]}), flush=True)
+    finally:
+        rospy.signal_shutdown("done")
+        procs.stop_all()
+
+
 def run_log_seconds(node_log, wall0):
     """Seconds from the start to the node's "<n> bodies, integrator ..." line (Run() entered: scene
     read, World built, topics of the node advertised), from the wall stamp roscpp puts on it."""
@@ -370,11 +413,53 @@ def write_report(rows, elapsed, command):
     return "\n".join(md)
 
 
+def time_launch():
+    """--launch: the trials, each in a fresh process, and their report."""
+    command = "bench/startup.py " + " ".join(shlex.quote(a) for a in sys.argv[1:])
+    argv = [sys.executable if os.path.exists(sys.executable) else "/usr/bin/python3", os.path.abspath(__file__),
+            "--launch", ARGS.launch, "--workspace", os.path.abspath(ARGS.workspace), "--port", str(ARGS.port),
+            "--bench-cpu", str(ARGS.bench_cpu), "--one-trial", "launch"]
+    rows = []
+    for trial in range(1, ARGS.trials + 1):
+        log_dir = tempfile.mkdtemp(prefix="startup_launch_%d_" % trial)
+        out = subprocess.run(argv + ["--log-dir", log_dir], stdout=subprocess.PIPE, universal_newlines=True)
+        lines = [l for l in out.stdout.splitlines() if l.startswith("{")]
+        if out.returncode != 0 or not lines:
+            log("trial %d failed (exit %d); logs in %s" % (trial, out.returncode, log_dir))
+            continue
+        row = json.loads(lines[-1])
+        row["trial"] = trial
+        rows.append(row)
+        log("trial %d: first ~bodies %.2f s" % (trial, row["first_bodies_s"]))
+    times = ", ".join("%.2f" % r["first_bodies_s"] for r in rows)
+    report = "\n".join([
+        "# Start-up of `%s` (`bench/startup.py --launch`)" % ARGS.launch, "",
+        "Command: `%s`. Commit %s, %s, %d cores; load average (1 min) at the trials' ends %s." % (
+            command, git_head(), cpu_model(), os.cpu_count(),
+            ", ".join("%.2f" % r["loadavg1"] for r in rows) or "n/a"), "",
+        "From just before `roslaunch rigid_body_sim %s` (a fresh private master per trial, this script "
+        "subscribed to `/rigid_body_sim/bodies` before) to the first `~bodies` message: median %s s over %d "
+        "trial(s) (%s s)." % (ARGS.launch, fmt(median(rows, "first_bodies_s"), 2), len(rows), times), ""])
+    stem = os.path.splitext(os.path.basename(ARGS.launch))[0]
+    md_path, csv_path = write_results(ARGS.out, "startup_" + stem, report,
+                                      ["trial", "first_bodies_s", "loadavg1"], rows)
+    print(report)
+    print("written: %s, %s" % (md_path, csv_path))
+    if len(rows) < ARGS.trials:
+        sys.exit(1)
+
+
 def main():
     from node_harness import reexec_in_workspace
     if ARGS.one_trial:
         reexec_in_workspace(ARGS.workspace, ARGS.port)
-        run_one_trial()
+        if ARGS.one_trial == "launch":
+            run_launch_trial()
+        else:
+            run_one_trial()
+        return
+    if ARGS.launch:
+        time_launch()
         return
     ws = os.path.abspath(ARGS.workspace)
     devel_program(ws, "rigid_body_sim_node")

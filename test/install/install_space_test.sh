@@ -14,7 +14,10 @@
 #     shard k pinned to core k mod the cores (scripts/on_core.sh, installed);
 #     with pin_cores:=false both keep this shell's CPU affinity;
 #   - rigid_body_sim.testing.SimClient: pause(), then step(10) returns the
-#     default scene's four bodies and a state hash.
+#     default scene's four bodies and a state hash;
+#   - roslaunch rigid_body_sim quadrotor.launch: the URDF quadrotor, with
+#     robot_state_publisher and the installed controller in lockstep, climbs
+#     past 0.5 m.
 # Every wait is bounded and every process started is stopped on exit. The
 # first failure prints one "install_space_test: FAIL: ..." line (then the
 # log it concerns) and exits 1.
@@ -104,7 +107,8 @@ import roslib.packages
 import rigid_body_sim.msg, rigid_body_sim.srv, rigid_body_sim.testing
 prefix = sys.argv[1] + os.sep
 found = {'rigid_body_sim_node': roslib.packages.find_node('rigid_body_sim', 'rigid_body_sim_node'),
-         'on_core.sh': roslib.packages.find_node('rigid_body_sim', 'on_core.sh')}
+         'on_core.sh': roslib.packages.find_node('rigid_body_sim', 'on_core.sh'),
+         'quadrotor_controller.py': roslib.packages.find_node('rigid_body_sim', 'quadrotor_controller.py')}
 for name, paths in found.items():
     print(name, paths)
     assert paths and paths[0].startswith(prefix), '%s not in the install space' % name
@@ -159,6 +163,22 @@ sim.resume()
 EOF
   stop "$single"
 
+  # The quadrotor example, its controller and URDF from the install space.
+  launch quadrotor rigid_body_sim quadrotor.launch
+  quadrotor=$started
+  timeout -k 5 40 /usr/bin/python3 > "$tmp/climb.log" 2>&1 - <<'EOF' || fail "quadrotor.launch: base_link did not climb past 0.5 m" "$tmp/quadrotor.log"
+import threading
+import rospy
+from nav_msgs.msg import Odometry
+rospy.init_node('install_space_test', anonymous=True)
+climbed = threading.Event()
+rospy.Subscriber('/rigid_body_sim/base_link/odom', Odometry,
+                 lambda odom: odom.pose.pose.position.z > 0.5 and climbed.set())
+assert climbed.wait(30.0), 'no odometry of base_link above 0.5 m within 30 s'
+EOF
+  node_pids+=("$(node_pid /rigid_body_sim)")
+  stop "$quadrotor"
+
   # Shards, pinned (default) and not.
   cores=$(nproc --all)
   own_affinity="$(taskset -pc $$ | sed 's/.*: //')"
@@ -208,4 +228,4 @@ installing=1
   > "$tmp/install.log" 2>&1 || fail "catkin_make install -DCMAKE_INSTALL_PREFIX=$prefix" "$tmp/install.log"
 # It prints its own FAIL line.
 env -i PATH=/usr/bin:/bin HOME="$HOME" bash "$self" --in-install-space "$prefix" "$ws" "$tmp" || exit 1
-echo "install_space_test: OK in $(( $(date +%s) - start_time )) s (install space, node, 2 shards pinned and not, Python client)"
+echo "install_space_test: OK in $(( $(date +%s) - start_time )) s (install space, node, Python client, quadrotor, 2 shards pinned and not)"
