@@ -125,50 +125,6 @@ SineCosine SinCos(double x) {
   }
 }
 
-// atan t to about an ulp: fdlibm's reduction to |t| <= 7/16 about the nearest
-// of atan ½, 1, 3/2, ∞ and its polynomial, without glibc's slow paths.
-double Atan(double t) {
-  constexpr double kAtanHead[] = {4.63647609000806093515e-01, 7.85398163397448278999e-01,
-                                  9.82793723247329054082e-01, 1.57079632679489655800e+00};
-  constexpr double kAtanTail[] = {2.26987774529616870924e-17, 3.06161699786838301793e-17,
-                                  1.39033110312309984516e-17, 6.12323399573676603587e-17};
-  const double a = std::abs(t);
-  int id;
-  double x;
-  if (a < 0.4375) {
-    id = -1;
-    x = a;
-  } else if (a < 0.6875) {
-    id = 0;
-    x = (2.0 * a - 1.0) / (2.0 + a);
-  } else if (a < 1.1875) {
-    id = 1;
-    x = (a - 1.0) / (a + 1.0);
-  } else if (a < 2.4375) {
-    id = 2;
-    x = (a - 1.5) / (1.0 + 1.5 * a);
-  } else {
-    id = 3;
-    x = -1.0 / a;
-  }
-  const double z = x * x;
-  const double w = z * z;
-  const double odd =
-      z * (3.33333333333329318027e-01 +
-           w * (1.42857142725034663711e-01 +
-                w * (9.09088713343650656196e-02 +
-                     w * (6.66107313738753120669e-02 +
-                          w * (4.97687799461593236017e-02 + w * 1.62858201153657823623e-02)))));
-  const double even =
-      w * (-1.99999999998764832476e-01 +
-           w * (-1.11111104054623557880e-01 +
-                w * (-7.69187620504482999495e-02 +
-                     w * (-5.83357013379057348645e-02 + w * -3.65315727442169155270e-02))));
-  const double result =
-      id < 0 ? x - x * (odd + even) : kAtanHead[id] - ((x * (odd + even) - kAtanTail[id]) - x);
-  return std::copysign(result, t);
-}
-
 // 2π as a pair: turns of the precession are taken off without rounding 2π.
 constexpr Pair kTwoPi = {2.0 * M_PI, 2.4492935982947064e-16};
 
@@ -333,7 +289,7 @@ ExactFreeFlow::Phase ExactFreeFlow::PhaseAt(double u) const {
   }
   const double inverse_theta4 = 1.0 / theta4;
   return {sn_scale_ * theta1 * inverse_theta4, cn_scale_ * theta2 * inverse_theta4,
-          dn_scale_ * theta3 * inverse_theta4, Atan(twist_imag / twist_real)};
+          dn_scale_ * theta3 * inverse_theta4, std::atan2(twist_imag, twist_real)};
 }
 
 Eigen::Quaterniond ExactFreeFlow::OrientationAt(double u) const {
