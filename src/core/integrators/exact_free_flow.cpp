@@ -83,48 +83,6 @@ Pair Reduced(const Pair& a, const Pair& period) {
   return Sum(a, {-whole.hi, -std::fma(periods, period.lo, whole.lo)});
 }
 
-// sin x and cos x for the flow's bounded angles (|x| <= a few π), to about
-// an ulp: x less the nearest multiple of π/2 (π/2 in two parts, the first of
-// 33 bits, so n π/2 comes off exactly), then fdlibm's kernels on |r| <= π/4.
-// glibc's sin and cos reduce any x and check for errno, twice per step.
-struct SineCosine {
-  double sin, cos;
-};
-SineCosine SinCos(double x) {
-  constexpr double kTwoOverPi = 6.36619772367581382433e-01;
-  constexpr double kHalfPiHead = 1.57079632673412561417e+00;
-  constexpr double kHalfPiTail = 6.07710050650619224932e-11;
-  const double n = std::nearbyint(x * kTwoOverPi);
-  const double r = (x - n * kHalfPiHead) - n * kHalfPiTail;
-  const double z = r * r;
-  const double sin_r =
-      r + r * z *
-              (-1.66666666666666324348e-01 +
-               z * (8.33333333332248946124e-03 +
-                    z * (-1.98412698298579493134e-04 +
-                         z * (2.75573137070700676789e-06 + z * (-2.50507602534068634195e-08 +
-                                                                z * 1.58969099521155010221e-10)))));
-  const double cos_r =
-      1.0 - 0.5 * z +
-      z * z *
-          (4.16666666666666019037e-02 +
-           z * (-1.38888888888741095749e-03 +
-                z * (2.48015872894767294178e-05 +
-                     z * (-2.75573143513906633035e-07 +
-                          z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
-  // x = r + nπ/2: quadrant n mod 4 turns (cos r, sin r) by nπ/2.
-  switch (static_cast<int>(n) & 3) {
-    case 0:
-      return {sin_r, cos_r};
-    case 1:
-      return {cos_r, -sin_r};
-    case 2:
-      return {-sin_r, -cos_r};
-    default:
-      return {-cos_r, sin_r};
-  }
-}
-
 // 2π as a pair: turns of the precession are taken off without rounding 2π.
 constexpr Pair kTwoPi = {2.0 * M_PI, 2.4492935982947064e-16};
 
@@ -261,9 +219,9 @@ bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& mod
 }
 
 ExactFreeFlow::Phase ExactFreeFlow::PhaseAt(double u) const {
-  const SineCosine harmonic = SinCos(angle_per_phase_ * u);
-  const double c = harmonic.cos;
-  const double s = harmonic.sin;
+  const double x = angle_per_phase_ * u;
+  const double c = std::cos(x);
+  const double s = std::sin(x);
   // The harmonics e^{i(2m+1)x}, e^{i(2m+2)x} by turning through e^{2ix}:
   // two independent chains.
   const double c2 = c * c - s * s;
@@ -316,9 +274,8 @@ Eigen::Quaterniond ExactFreeFlow::OrientationAt(double u) const {
   // ⊗ on the left by the precession Rz(ψ).
   const double half_precession =
       0.5 * (precession_.hi + (precession_offset_ + precession_per_twist_ * phase.twist));
-  const SineCosine turn_half = SinCos(half_precession);
-  const double c = turn_half.cos;
-  const double s = turn_half.sin;
+  const double c = std::cos(half_precession);
+  const double s = std::sin(half_precession);
   const Eigen::Quaterniond turn(c * tilt_w - s * tilt_z, c * tilt_x - s * tilt_y,
                                 c * tilt_y + s * tilt_x, c * tilt_z + s * tilt_w);
   return (alignment_ * turn * frame_to_body_).normalized();
