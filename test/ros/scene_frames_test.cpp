@@ -322,7 +322,8 @@ TEST(SceneFrames, UrdfSitesAndNamesAreUniqueAcrossTheScene) {
   const std::string quad = "{urdf: {file: '" + kQuadrotorPath + "'}}";
   EXPECT_EQ(WorldErrorOf("[" + quad + ", {name: quad2, urdf: {file: '" + kQuadrotorPath + "'}}]"),
             "bodies[1] (name 'quad2'): sites[0]: name 'base_link' duplicates bodies[0]");
-  const std::vector<core::Site>& links = Parse("[" + quad + "]").frames[0].sites;
+  const SceneBodies scene = Parse("[" + quad + "]");  // kept: `links` refers into it
+  const std::vector<core::Site>& links = scene.frames[0].sites;
   const auto rotor = std::find_if(links.begin(), links.end(),
                                   [](const core::Site& site) { return site.name == "rotor_0"; });
   ASSERT_NE(rotor, links.end());
