@@ -62,9 +62,9 @@ World MakeWorld(const std::string& integrator, int bodies, bool forced,
 
 // Seconds per body-step, the counter every World::Step benchmark reports.
 void ReportPerBodyStep(int bodies, benchmark::State* state) {
-  state->counters["per_body_step"] = benchmark::Counter(
-      static_cast<double>(state->iterations()) * bodies,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state->counters["per_body_step"] =
+      benchmark::Counter(static_cast<double>(state->iterations()) * bodies,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 
 // Steps `world` once per iteration. A held body-axes force off the COM is a
@@ -98,6 +98,31 @@ void BM_WorldStep(benchmark::State& state, const std::string& integrator, bool f
   TimeSteps(&world, &state);
   ReportPerBodyStep(bodies, &state);
 }
+
+// Large steps: symmetric tops (a 0.2 × 0.2 × 0.4 m box), for which the
+// Casimir compositions are exact and need no substep, at dt = 0.1 s turning
+// about 0.5 rad a step, past the series' 1/16 rad: the lanes with SinCosWide.
+// Against BM_WorldStep/<scheme>/free of the same run.
+void BM_WorldStepLargeSteps(benchmark::State& state, const std::string& integrator) {
+  const int bodies = static_cast<int>(state.range(0));
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states(bodies);
+  models.reserve(bodies);
+  for (int i = 0; i < bodies; ++i) {
+    models.emplace_back("body" + std::to_string(i), MakeBox(1.0, {0.2, 0.2, 0.4}, 2));
+    states[i].position = {0.01 * i, 0.0, 0.0};
+    states[i].angular_momentum = {0.05, 0.02, 0.1};
+  }
+  WorldOptions options;
+  options.integrator = integrator;
+  options.dt_s = 0.1;
+  World world(std::move(models), std::move(states), options);
+  TimeSteps(&world, &state);
+  ReportPerBodyStep(bodies, &state);
+}
+BENCHMARK_CAPTURE(BM_WorldStepLargeSteps, casimir_splitting4, "casimir_splitting4")->Arg(1000);
+BENCHMARK_CAPTURE(BM_WorldStepLargeSteps, casimir_rkn4, "casimir_rkn4")->Arg(1000);
+BENCHMARK_CAPTURE(BM_WorldStepLargeSteps, casimir_rkn6, "casimir_rkn6")->Arg(1000);
 
 // The skips decided per body each step, against the tumbling box of
 // BM_WorldStep/casimir_splitting4/free in the same run: a body at rest with no
@@ -140,9 +165,9 @@ void BM_ParticlePositions(benchmark::State& state) {
       benchmark::DoNotOptimize(positions.data());
     }
   }
-  state.counters["per_body"] = benchmark::Counter(
-      static_cast<double>(state.iterations()) * bodies,
-      benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["per_body"] =
+      benchmark::Counter(static_cast<double>(state.iterations()) * bodies,
+                         benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
 }
 BENCHMARK(BM_ParticlePositions)->Arg(1000);
 
@@ -187,15 +212,22 @@ BENCHMARK_CAPTURE(BM_WorldStepLoaded, gravity, LoadKind::kGravity)->Arg(1000);
 void BM_WorldStepThreads(benchmark::State& state, bool forced) {
   const int bodies = static_cast<int>(state.range(0));
   const auto threads = static_cast<std::size_t>(state.range(1));
-  World world = MakeWorld(kDefaultIntegrator, bodies, forced, Motion::kTumbling, Body::kBox, threads);
+  World world =
+      MakeWorld(kDefaultIntegrator, bodies, forced, Motion::kTumbling, Body::kBox, threads);
   TimeSteps(&world, &state);
   ReportPerBodyStep(bodies, &state);
 }
 BENCHMARK_CAPTURE(BM_WorldStepThreads, free, false)
-    ->Args({100000, 1})->Args({100000, 2})->UseRealTime()->MeasureProcessCPUTime()
+    ->Args({100000, 1})
+    ->Args({100000, 2})
+    ->UseRealTime()
+    ->MeasureProcessCPUTime()
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_WorldStepThreads, forced, true)
-    ->Args({100000, 1})->Args({100000, 2})->UseRealTime()->MeasureProcessCPUTime()
+    ->Args({100000, 1})
+    ->Args({100000, 2})
+    ->UseRealTime()
+    ->MeasureProcessCPUTime()
     ->Unit(benchmark::kMillisecond);
 
 // The node's state hash (FNV-1a 64 over 13 doubles a body, doc/node.md):
@@ -203,7 +235,8 @@ BENCHMARK_CAPTURE(BM_WorldStepThreads, forced, true)
 // StateHashWorker does off that thread), per body.
 void BM_StateHashCopy(benchmark::State& state) {
   const int bodies = static_cast<int>(state.range(0));
-  const World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, Body::kBox, 1);
+  const World world =
+      MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, Body::kBox, 1);
   std::vector<double> values;
   for (auto _ : state) {
     StateHashValues(world, &values);
@@ -215,7 +248,8 @@ BENCHMARK(BM_StateHashCopy)->Arg(10000);
 
 void BM_StateHashFnv(benchmark::State& state) {
   const int bodies = static_cast<int>(state.range(0));
-  const World world = MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, Body::kBox, 1);
+  const World world =
+      MakeWorld(kDefaultIntegrator, bodies, false, Motion::kTumbling, Body::kBox, 1);
   std::vector<double> values;
   StateHashValues(world, &values);
   for (auto _ : state) benchmark::DoNotOptimize(HashOfValues(values));
