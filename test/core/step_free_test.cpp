@@ -3,11 +3,14 @@
 // gives what Step gives body by body, to round-off, and a bad body in a
 // batch is frozen alone.
 #include <cmath>
+#include <limits>
 #include <random>
 
 #include <gtest/gtest.h>
 
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/reference/free_body.h"
+#include "rigid_body_sim/core/step_policy.h"
 #include "rigid_body_sim/core/world.h"
 #include "test_bodies.h"
 
@@ -86,6 +89,138 @@ TEST_P(EveryScheme, StepFreeOfABatchIsStepBodyByBody) {
     EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance);
     EXPECT_EQ(world.state(i).angular_momentum, expected[i].angular_momentum);
     EXPECT_EQ(world.state(i).linear_momentum, expected[i].linear_momentum);
+  }
+}
+
+class CasimirScheme : public ::testing::TestWithParam<std::string> {};
+
+INSTANTIATE_TEST_SUITE_P(Core, CasimirScheme,
+                         ::testing::Values("casimir_splitting", "casimir_splitting4",
+                                           "casimir_rkn4", "casimir_rkn6", "exact_free"),
+                         [](const auto& info) { return info.param; });
+
+TEST_P(CasimirScheme, StepFreeOfABatchAtLargeStepsIsStepBodyByBody) {
+  // dt = 0.25 s, which the other schemes refuse for body 11 (spin_aliased):
+  // the symmetric tops and spheres need no substep (the Casimir schemes are
+  // exact for them) yet turn by 0.1 to 100 rad a step, past the series: the
+  // wide lanes, against the scalar Step within the same round-off bound.
+  const double dt = 0.25;
+  World world = MakeFreeWorld(GetParam(), dt);
+  std::size_t wide = 0;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    const bool one_step = world.SubstepsFor(i, world.state(i)) == 1;
+    if (one_step && !FitsFreeLanes(world.model(i), world.state(i), dt)) ++wide;
+  }
+  ASSERT_GE(wide, 8u);  // a full block of wide lanes
+  std::vector<BodyState> expected = world.states();
+  const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
+  const int steps = GetParam() == "exact_free" ? 20 : 200;
+  for (int n = 0; n < steps; ++n) {
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      const std::uint32_t substeps = world.SubstepsFor(i, world.state(i));
+      for (std::uint32_t k = 0; k < substeps; ++k) {
+        integrator->Step(world.model(i), nullptr, dt / substeps, &expected[i]);
+      }
+    }
+    world.Step();
+  }
+  const double tolerance = 1e-16 * steps * 10;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    SCOPED_TRACE("body " + std::to_string(i));
+    EXPECT_EQ(world.fault(i), BodyFault::kNone);
+    EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation), tolerance);
+    EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance);
+  }
+}
+
+TEST(FreeLanes, TopsAndSpheresAreExactAtLargeSteps) {
+  // The Casimir compositions are exact for symmetric tops and spheres
+  // (integrators_test), so the World's wide lanes must follow the closed
+  // form to round-off at 0.25 s steps turning 0.1 to 1.2 rad each.
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states;
+  for (int i = 0; i < 16; ++i) {
+    const Eigen::Vector3d moments =
+        i % 2 ? Eigen::Vector3d(1.0, 1.0, 2.0) : Eigen::Vector3d(1.5, 1.5, 1.5);
+    models.push_back(
+        test::DiagonalBody(moments, Eigen::Vector3d::Zero(), "body" + std::to_string(i)));
+    BodyState state;
+    state.orientation = Eigen::Quaterniond(
+        Eigen::AngleAxisd(0.4 + 0.1 * i, Eigen::Vector3d(1, -2, 0.5 + 0.1 * i).normalized()));
+    state.angular_momentum = Eigen::Vector3d(0.7, -1.1, 2.3) * (0.3 + 0.1 * i);
+    state.linear_momentum = {0.1 * i, 0.2, -0.3};
+    states.push_back(state);
+  }
+  const std::vector<BodyState> initial = states;
+  for (const char* name : {"casimir_splitting4", "casimir_rkn4", "casimir_rkn6"}) {
+    WorldOptions options;
+    options.integrator = name;
+    options.dt_s = 0.25;
+    World world(models, states, options);
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      ASSERT_FALSE(FitsFreeLanes(world.model(i), world.state(i), options.dt_s));
+      ASSERT_EQ(world.SubstepsFor(i, world.state(i)), 1u);
+    }
+    for (int n = 0; n < 40; ++n) world.Step();
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      SCOPED_TRACE(std::string(name) + ", body " + std::to_string(i));
+      const BodyState exact = ExactFreeBodyState(models[i], initial[i], 10.0);
+      // Round-off of 40 steps of O(1) rotations, as for the scalar Step.
+      EXPECT_LT(test::AngleBetween(world.state(i).orientation, exact.orientation), 1e-13);
+      EXPECT_LT((world.state(i).position - exact.position).norm(), 1e-13);
+    }
+  }
+}
+
+TEST(FreeLanes, NearlySymmetricBodiesAtLargeStepsAreStepBodyByBody) {
+  // λ = (1, 1.00001, 2): the Casimir split's error rate is small enough for one
+  // step of 0.25 s, whose axis flows turn past the series' range, so the
+  // full composition runs with SinCosWide. Against the scalar Step (which
+  // takes std::sin and std::cos there) within a round-off bound that grows
+  // with the angles.
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states;
+  for (int i = 0; i < 16; ++i) {
+    models.push_back(test::DiagonalBody({1.0, 1.00001, 2.0}, Eigen::Vector3d::Zero(),
+                                        "body" + std::to_string(i)));
+    BodyState state;
+    state.orientation = Eigen::Quaterniond(
+        Eigen::AngleAxisd(0.3 * i, Eigen::Vector3d(2, 1, 0.5 + 0.1 * i).normalized()));
+    state.angular_momentum = Eigen::Vector3d(1.5, -1.0, 3.0) * (1.0 + 0.05 * i);
+    state.linear_momentum = {0.1, 0.2 * i, -0.3};
+    states.push_back(state);
+  }
+  for (const char* name : {"casimir_splitting4", "casimir_rkn4", "casimir_rkn6"}) {
+    WorldOptions options;
+    options.integrator = name;
+    options.dt_s = 0.25;
+    World world(models, states, options);
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      ASSERT_FALSE(FitsFreeLanes(world.model(i), world.state(i), options.dt_s));
+      ASSERT_EQ(world.SubstepsFor(i, world.state(i)), 1u);
+    }
+    std::vector<BodyState> expected = states;
+    const std::unique_ptr<Integrator> integrator = MakeIntegrator(name);
+    const int steps = 200;
+    for (int n = 0; n < steps; ++n) {
+      for (std::size_t i = 0; i < world.size(); ++i) {
+        integrator->Step(world.model(i), nullptr, options.dt_s, &expected[i]);
+      }
+      world.Step();
+    }
+    // Each of a step's turns (at most 21 axis flows and the one about L) is
+    // off by a few ulps of its angle, which is up to θ_max = dt |L| max 1/λ
+    // (1.5 rad here): SinCosWide's 2 ulps, the library's half, the angle's own
+    // rounding. So the two paths part by at most 22 · 4ε · θ_max a step.
+    const double turn_bound = 22 * 4 * std::numeric_limits<double>::epsilon();
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      SCOPED_TRACE(std::string(name) + ", body " + std::to_string(i));
+      const double max_angle =
+          TurnPerMomentum(world.model(i), options.dt_s) * world.state(i).angular_momentum.norm();
+      EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation),
+                steps * turn_bound * max_angle);
+      EXPECT_LT((world.state(i).position - expected[i].position).norm(), 1e-16 * steps * 10);
+    }
   }
 }
 

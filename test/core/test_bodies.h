@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25,7 +26,8 @@ inline BodyModel Diag123Body() {
 // satisfy the strict triangle inequality; shifted by `offset` so the COM is
 // not at the reference origin.
 inline BodyModel DiagonalBody(const Eigen::Vector3d& moments,
-                              const Eigen::Vector3d& offset = Eigen::Vector3d::Zero()) {
+                              const Eigen::Vector3d& offset = Eigen::Vector3d::Zero(),
+                              const std::string& name = "diagonal") {
   const double m = 0.5;
   // I_xx = 2m(d_y² + d_z²) etc.: solve for s_k = 2m d_k².
   const double total = 0.5 * moments.sum();
@@ -37,7 +39,7 @@ inline BodyModel DiagonalBody(const Eigen::Vector3d& moments,
     particles.push_back({m, offset + e});
     particles.push_back({m, offset - e});
   }
-  return BodyModel("diagonal", particles);
+  return BodyModel(name, particles);
 }
 
 inline BodyModel RodBody() {

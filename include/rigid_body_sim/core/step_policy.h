@@ -2,7 +2,8 @@
 // (each written once here): at rest (skipped), in one step (batched, through
 // the SIMD lanes where the scheme has them and the body fits), in n substeps
 // of dt/n, or not at all (frozen). World::Step classifies each body with
-// PlanStep; the lane kernels ask FitsFreeLanes / FitsLoadedLanes.
+// PlanStep; the lane kernels ask FitsFreeLanes / FitsFreeWideLanes /
+// FitsLoadedLanes.
 #pragma once
 
 #include <algorithm>
@@ -24,6 +25,9 @@ constexpr double kMaxSubstepAngle = 0.04;
 // The largest angle [rad] at which the small-angle series (SinCosSmall,
 // ExpMapSmall) are exact to round-off (truncation < 1e-20 relative).
 constexpr double kSeriesMaxAngle = 1.0 / 16;
+// The largest angle [rad] SinCosWide takes: its reduction by π/2 is exact for
+// multiples up to 2^20, and 1e5 rad is 63,662 of them.
+constexpr double kWideMaxAngle = 1e5;
 // The most e-folds c·dt the damping may shrink p or L by in one lanes step.
 constexpr double kLanesMaxDecay = 1.0 / 16;
 // Every rate SubstepsFor weighs is at most this times |L|·max_k(1/λ_k) (the
@@ -68,6 +72,13 @@ inline double OneStepMomentumSq(const BodyModel& model, double dt_s) {
 inline bool FitsFreeLanes(const BodyModel& model, const BodyState& state, double dt_s) {
   return TurnWithin(TurnPerMomentum(model, dt_s), state.angular_momentum.squaredNorm(),
                     kSeriesMaxAngle);
+}
+
+// Whether a free body that does not fit the series may take the free lanes
+// with SinCosWide: the same half-angles within kWideMaxAngle.
+inline bool FitsFreeWideLanes(const BodyModel& model, const BodyState& state, double dt_s) {
+  return TurnWithin(TurnPerMomentum(model, dt_s), state.angular_momentum.squaredNorm(),
+                    kWideMaxAngle);
 }
 
 // Whether a loaded body may take the loaded lanes: every half-angle of its

@@ -75,6 +75,14 @@ struct LaneBodies {
 };
 
 struct FreeLanes : LaneBodies {
+  // |L| [kg m²/s], for the rotation about L in the wide kernels.
+  double momentum_norm[kLanes];
+
+  void FillIdle(std::size_t first) {
+    LaneBodies::FillIdle(first);
+    for (std::size_t lane = first; lane < kLanes; ++lane) momentum_norm[lane] = 0.0;
+  }
+
   // Writes the lane's position and orientation (the only parts a free step
   // changes) to `state`.
   void Store(std::size_t lane, BodyState* state) const {
@@ -85,8 +93,9 @@ struct FreeLanes : LaneBodies {
 
 // FreeCompositionStep (compositions.h) lane by lane: drift, Π = q_WPᵀ L, the
 // axis flows of `splitting` and the rotation about L by c|L|h as increments,
-// added to the orientation once. The bodies in use must fit (FitsFreeLanes).
-template <std::size_t n>
+// added to the orientation once. The bodies in use must fit `angles`
+// (FitsFreeLanes, FitsFreeWideLanes).
+template <lanes::Angles angles, std::size_t n>
 inline __attribute__((always_inline)) void CompositionFreeLanes(const AxisSplitting<n>& splitting,
                                                                 double h, FreeLanes* lanes) {
   using lanes::Quaternion;
@@ -109,14 +118,16 @@ inline __attribute__((always_inline)) void CompositionFreeLanes(const AxisSplitt
     Quaternion turn{0.0, 0.0, 0.0, 0.0};  // an increment: (x, y, z, w − 1)
 #pragma GCC unroll 16
     for (std::size_t i = 0; i < n; ++i) {
-      lanes::Axis1FlowIncrement(a1, splitting.axis1[i] * h, m, &turn);
-      lanes::Axis3FlowIncrement(a3, splitting.axis3[i] * h, m, &turn);
+      lanes::Axis1FlowIncrement<angles>(a1, splitting.axis1[i] * h, m, &turn);
+      lanes::Axis3FlowIncrement<angles>(a3, splitting.axis3[i] * h, m, &turn);
     }
-    lanes::Axis1FlowIncrement(a1, splitting.axis1[n] * h, m, &turn);
+    lanes::Axis1FlowIncrement<angles>(a1, splitting.axis1[n] * h, m, &turn);
 
     const double angle = h * b.casimir[l];
     const Quaternion about_momentum =
-        lanes::ExpMapSmallIncrement(angle * lx, angle * ly, angle * lz);
+        angles == lanes::Angles::kSeries
+            ? lanes::ExpMapSmallIncrement(angle * lx, angle * ly, angle * lz)
+            : lanes::ExpMapWideIncrement(angle, b.momentum_norm[l], lx, ly, lz);
     const Quaternion q = lanes::AddStepRotation(orientation, principal, axes, turn, about_momentum);
     b.orientation[0][l] = q.x;
     b.orientation[1][l] = q.y;
@@ -125,32 +136,97 @@ inline __attribute__((always_inline)) void CompositionFreeLanes(const AxisSplitt
   }
 }
 
-// Integrator::StepFree through the lanes: bodies that fit go kLanes at a
-// time through `step_lanes(dt_s, lanes)`, the others through
-// `step_one(model, dt_s, state)`.
-template <typename StepLanes, typename StepOne>
-void StepFreeInLanes(const BodyBatch& batch, double dt_s, StepLanes step_lanes, StepOne step_one) {
+// The wide kernel of symmetric tops and spheres, whose two axis flows
+// commute: one each, exact for every scheme (3 flows in place of up to 21).
+void CommutingFreeWideLanes(double h, FreeLanes* lanes);
+
+// A scheme's torque-free lane kernels, one per range of step angles.
+struct FreeLaneKernels {
+  void (*series)(double h, FreeLanes* lanes);  // bodies that fit FitsFreeLanes
+  void (*wide)(double h, FreeLanes* lanes);    // the others that fit FitsFreeWideLanes
+};
+
+// Bodies gathered kLanes at a time for one kernel.
+struct FreeLaneQueue {
+  FreeLaneQueue(void (*lane_kernel)(double h, FreeLanes* lanes), bool wide_angles)
+      : kernel(lane_kernel), wide(wide_angles) {}
+
+  void (*kernel)(double h, FreeLanes* lanes);
+  bool wide;  // the kernel's angles are Angles::kWide: it needs |L|
   FreeLanes lanes;
-  std::size_t lane_bodies[kLanes];
-  std::size_t filled = 0;
-  const auto flush = [&] {
-    if (filled < kLanes) lanes.FillIdle(filled);
-    step_lanes(dt_s, &lanes);
-    for (std::size_t l = 0; l < filled; ++l) lanes.Store(l, &batch.states[lane_bodies[l]]);
-    filled = 0;
+  std::size_t bodies[kLanes];
+  std::size_t count = 0;
+
+  // Takes `body`; true when the lanes are full.
+  bool Add(std::size_t body, const BodyModel& model, const BodyState& state) {
+    lanes.Load(count, model, state);
+    if (wide) lanes.momentum_norm[count] = state.angular_momentum.norm();
+    bodies[count++] = body;
+    return count == kLanes;
+  }
+
+  // Steps the lanes by dt_s and hands each body's lane to `written(lane,
+  // body)`.
+  template <typename Written>
+  void Flush(double dt_s, Written written) {
+    if (count < kLanes) lanes.FillIdle(count);
+    kernel(dt_s, &lanes);
+    for (std::size_t l = 0; l < count; ++l) written(l, bodies[l]);
+    count = 0;
+  }
+};
+
+// A queue per kernel of a scheme, and the commuting flows' wide kernel.
+struct FreeLaneQueues {
+  FreeLaneQueue series;
+  FreeLaneQueue wide;
+  FreeLaneQueue commuting_wide;
+
+  explicit FreeLaneQueues(const FreeLaneKernels& kernels)
+      : series(kernels.series, false),
+        wide(kernels.wide, true),
+        commuting_wide(CommutingFreeWideLanes, true) {}
+
+  // The queue whose kernel takes a free body's step angles, or null when
+  // they are beyond every kernel's.
+  FreeLaneQueue* For(const BodyModel& model, const BodyState& state, double dt_s) {
+    if (FitsFreeLanes(model, state, dt_s)) return &series;
+    if (!FitsFreeWideLanes(model, state, dt_s)) return nullptr;
+    const CasimirSplit split(model);
+    return split.axis1 == 0.0 || split.axis3 == 0.0 ? &commuting_wide : &wide;
+  }
+
+  // Flushes every queue that holds a body.
+  template <typename Flush>
+  void FlushAll(Flush flush) {
+    for (FreeLaneQueue* queue : {&series, &wide, &commuting_wide}) {
+      if (queue->count > 0) flush(*queue);
+    }
+  }
+};
+
+// Integrator::StepFree through the lanes: bodies go kLanes at a time
+// through the kernel of their angles, those too fast for both through
+// `step_one(model, dt_s, state)`.
+template <typename StepOne>
+void StepFreeInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels& kernels,
+                     StepOne step_one) {
+  FreeLaneQueues queues(kernels);
+  const auto flush = [&](FreeLaneQueue& queue) {
+    queue.Flush(
+        dt_s, [&](std::size_t l, std::size_t body) { queue.lanes.Store(l, &batch.states[body]); });
   };
   for (const std::size_t body : batch) {
     const BodyModel& model = batch.models[body];
     BodyState& state = batch.states[body];
-    if (!FitsFreeLanes(model, state, dt_s)) {
-      step_one(model, dt_s, &state);  // too fast for the lanes' series
-      continue;
+    FreeLaneQueue* queue = queues.For(model, state, dt_s);
+    if (queue == nullptr) {
+      step_one(model, dt_s, &state);
+    } else if (queue->Add(body, model, state)) {
+      flush(*queue);
     }
-    lanes.Load(filled, model, state);
-    lane_bodies[filled++] = body;
-    if (filled == kLanes) flush();
   }
-  if (filled > 0) flush();
+  queues.FlushAll(flush);
 }
 
 }  // namespace rigid_body_sim::core

@@ -49,30 +49,24 @@ void CasimirLoadedStep4(double h, LoadedLanes* lanes);
 // world force F at the COM (gravity alone) and no damping turns as a free
 // body while its COM moves exactly as x += h p/M + h² F/(2M), p += h F,
 // which is what every scheme exact for constant forces gives: it takes
-// `free_lanes(dt_s, lanes)` and then the rest of that motion; a damped body
+// the free lanes of its angles (`free_lanes`) and then the rest of that motion; a damped body
 // is loaded however small its wrench, which keeps damping out of the free
 // lanes. Other bodies that fit take
 // `loaded_lanes(dt_s, lanes)` (nullptr: a scheme without them), the rest
 // `step_one(model, load, dt_s, state)`.
-template <typename FreeKernel, typename LoadedKernel, typename StepOne>
-void StepLoadedInLanes(const BodyBatch& batch, double dt_s, FreeKernel free_lanes,
+template <typename LoadedKernel, typename StepOne>
+void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels& free_lanes,
                        LoadedKernel loaded_lanes, StepOne step_one) {
   constexpr bool kHasLoadedLanes = !std::is_same_v<LoadedKernel, std::nullptr_t>;
-  FreeLanes pulled;  // bodies under a constant force
-  std::size_t pulled_bodies[kLanes];
-  std::size_t pulled_count = 0;
-  const auto flush_pulled = [&] {
-    if (pulled_count < kLanes) pulled.FillIdle(pulled_count);
-    free_lanes(dt_s, &pulled);
-    for (std::size_t l = 0; l < pulled_count; ++l) {
-      const std::size_t body = pulled_bodies[l];
+  FreeLaneQueues pulled(free_lanes);  // bodies under a constant force
+  const auto flush_pulled = [&](FreeLaneQueue& queue) {
+    queue.Flush(dt_s, [&](std::size_t l, std::size_t body) {
       BodyState& state = batch.states[body];
-      pulled.Store(l, &state);
+      queue.lanes.Store(l, &state);
       const Eigen::Vector3d impulse = dt_s * batch.loads[body].force_world();
       state.position += (0.5 * dt_s * batch.models[body].inverse_mass()) * impulse;
       state.linear_momentum += impulse;
-    }
-    pulled_count = 0;
+    });
   };
   // Bodies under a load that depends on the orientation, in four groups by
   // whether they are damped and hold a body-axes part: the kernel instance a
@@ -100,10 +94,9 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, FreeKernel free_lane
     const HeldLoads& load = batch.loads[body];
     BodyState& state = batch.states[body];
     const bool damped = load.has_damping();
-    if (!load.has_torque() && !damped && FitsFreeLanes(model, state, dt_s)) {
-      pulled.Load(pulled_count, model, state);
-      pulled_bodies[pulled_count++] = body;
-      if (pulled_count == kLanes) flush_pulled();
+    FreeLaneQueue* queue = load.has_torque() || damped ? nullptr : pulled.For(model, state, dt_s);
+    if (queue != nullptr) {
+      if (queue->Add(body, model, state)) flush_pulled(*queue);
     } else if (kHasLoadedLanes && FitsLoadedLanes(model, state, load, dt_s) &&
                (!damped || DampingFitsLoadedLanes(load.damping(), dt_s))) {
       const std::size_t group = (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
@@ -114,7 +107,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, FreeKernel free_lane
       step_one(model, load, dt_s, &state);  // too fast for the lanes' series
     }
   }
-  if (pulled_count > 0) flush_pulled();
+  pulled.FlushAll(flush_pulled);
   for (std::size_t group = 0; group < kGroups; ++group) {
     if (turned_count[group] > 0) flush_turned(group);
   }

@@ -32,17 +32,27 @@ struct Compositions<6> {
 // The torque-free steps of kLanes bodies at once, one clone per
 // instruction set each (a template cannot carry the clones).
 RBS_SIMD_CLONES void CasimirRkn4FreeLanes(double h, FreeLanes* lanes) {
-  CompositionFreeLanes(Compositions<4>::kFree, h, lanes);
+  CompositionFreeLanes<lanes::Angles::kSeries>(Compositions<4>::kFree, h, lanes);
+}
+
+RBS_SIMD_CLONES void CasimirRkn4FreeWideLanes(double h, FreeLanes* lanes) {
+  CompositionFreeLanes<lanes::Angles::kWide>(Compositions<4>::kFree, h, lanes);
 }
 
 RBS_SIMD_CLONES void CasimirRkn6FreeLanes(double h, FreeLanes* lanes) {
-  CompositionFreeLanes(Compositions<6>::kFree, h, lanes);
+  CompositionFreeLanes<lanes::Angles::kSeries>(Compositions<6>::kFree, h, lanes);
+}
+
+RBS_SIMD_CLONES void CasimirRkn6FreeWideLanes(double h, FreeLanes* lanes) {
+  CompositionFreeLanes<lanes::Angles::kWide>(Compositions<6>::kFree, h, lanes);
 }
 
 namespace {
 
 template <int kOrder>
-constexpr auto kLanesStep = kOrder == 4 ? CasimirRkn4FreeLanes : CasimirRkn6FreeLanes;
+constexpr FreeLaneKernels kFreeLanes =
+    kOrder == 4 ? FreeLaneKernels{CasimirRkn4FreeLanes, CasimirRkn4FreeWideLanes}
+                : FreeLaneKernels{CasimirRkn6FreeLanes, CasimirRkn6FreeWideLanes};
 
 }  // namespace
 
@@ -70,7 +80,7 @@ double CasimirRknIntegrator<kOrder>::RotationErrorRate(const BodyModel& model,
 
 template <int kOrder>
 void CasimirRknIntegrator<kOrder>::StepFree(const BodyBatch& batch, double dt_s) const {
-  StepFreeInLanes(batch, dt_s, kLanesStep<kOrder>,
+  StepFreeInLanes(batch, dt_s, kFreeLanes<kOrder>,
                   [this](const BodyModel& model, double h, BodyState* state) {
                     Step(model, nullptr, h, state);
                   });
@@ -79,7 +89,7 @@ void CasimirRknIntegrator<kOrder>::StepFree(const BodyBatch& batch, double dt_s)
 // Bodies under a constant force in the free lanes; the others one by one.
 template <int kOrder>
 void CasimirRknIntegrator<kOrder>::StepLoaded(const BodyBatch& batch, double dt_s) const {
-  StepLoadedInLanes(batch, dt_s, kLanesStep<kOrder>, nullptr,
+  StepLoadedInLanes(batch, dt_s, kFreeLanes<kOrder>, nullptr,
                     [this](const BodyModel& model, const HeldLoads& load, double h,
                            BodyState* state) { Step(model, &load, h, state); });
 }

@@ -17,8 +17,14 @@ constexpr auto kFree = StrangComposition(kYoshida3Weights);
 
 // The torque-free step of kLanes bodies at once.
 RBS_SIMD_CLONES void CasimirSplitting4FreeLanes(double h, FreeLanes* lanes) {
-  CompositionFreeLanes(kFree, h, lanes);
+  CompositionFreeLanes<lanes::Angles::kSeries>(kFree, h, lanes);
 }
+RBS_SIMD_CLONES void CasimirSplitting4FreeWideLanes(double h, FreeLanes* lanes) {
+  CompositionFreeLanes<lanes::Angles::kWide>(kFree, h, lanes);
+}
+namespace {
+constexpr FreeLaneKernels kFreeLanes = {CasimirSplitting4FreeLanes, CasimirSplitting4FreeWideLanes};
+}  // namespace
 
 void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load, double dt_s,
                                        BodyState* state) const {
@@ -60,14 +66,14 @@ double CasimirSplitting4Integrator::RotationErrorRate(const BodyModel& model,
 }
 
 void CasimirSplitting4Integrator::StepFree(const BodyBatch& batch, double dt_s) const {
-  StepFreeInLanes(batch, dt_s, CasimirSplitting4FreeLanes,
+  StepFreeInLanes(batch, dt_s, kFreeLanes,
                   [this](const BodyModel& model, double h, BodyState* state) {
                     Step(model, nullptr, h, state);
                   });
 }
 
 void CasimirSplitting4Integrator::StepLoaded(const BodyBatch& batch, double dt_s) const {
-  StepLoadedInLanes(batch, dt_s, CasimirSplitting4FreeLanes, CasimirLoadedStep4,
+  StepLoadedInLanes(batch, dt_s, kFreeLanes, CasimirLoadedStep4,
                     [this](const BodyModel& model, const HeldLoads& load, double h,
                            BodyState* state) { Step(model, &load, h, state); });
 }

@@ -3,6 +3,8 @@
 #pragma once
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "rigid_body_sim/core/integrators/sin_cos.h"
+#include "rigid_body_sim/core/step_policy.h"
 
 // One clone of the kernel per x86-64 level, picked by the loader; elsewhere,
 // or built with -DRBS_SIMD_CLONES=OFF (the same bits on every x86-64
@@ -58,17 +60,52 @@ inline void Axis3Flow(double coefficient, double h, double* m, Quaternion* q) {
   AxisTurn(s, c, &m[0], &m[1], &q->w, &q->x, &q->y, &q->z);
 }
 
+// The step angles a lane kernel takes: up to kSeriesMaxAngle by the series
+// (FitsFreeLanes), or up to kWideMaxAngle by SinCosWide (FitsFreeWideLanes),
+// which costs about twice as much.
+enum class Angles { kSeries, kWide };
+
+template <Angles angles>
+inline void SinCosMinusOneOf(double x, double* sin_x, double* cos_x_minus_one) {
+  if constexpr (angles == Angles::kSeries) {
+    SinCosMinusOneSmall(x, sin_x, cos_x_minus_one);
+  } else {
+    const SinCosValues values = SinCosWide(x);
+    *sin_x = values.sin;
+    *cos_x_minus_one = values.cos_minus_one;
+  }
+}
+
 // The same composing onto a rotation increment `turn` (w − 1, x, y, z).
+template <Angles angles>
 inline void Axis1FlowIncrement(double coefficient, double h, double* m, Quaternion* turn) {
   double s, c_minus_one;
-  SinCosMinusOneSmall(0.5 * h * coefficient * m[0], &s, &c_minus_one);
+  SinCosMinusOneOf<angles>(0.5 * h * coefficient * m[0], &s, &c_minus_one);
   AxisTurnIncrement(s, c_minus_one, &m[1], &m[2], &turn->w, &turn->y, &turn->z, &turn->x);
 }
 
+template <Angles angles>
 inline void Axis3FlowIncrement(double coefficient, double h, double* m, Quaternion* turn) {
   double s, c_minus_one;
-  SinCosMinusOneSmall(0.5 * h * coefficient * m[2], &s, &c_minus_one);
+  SinCosMinusOneOf<angles>(0.5 * h * coefficient * m[2], &s, &c_minus_one);
   AxisTurnIncrement(s, c_minus_one, &m[0], &m[1], &turn->w, &turn->x, &turn->y, &turn->z);
+}
+
+// exp of θ = angle_per_momentum · L as a rotation increment, given |L| (a
+// square root in the lanes' loop would keep it from vectorising): the series
+// where |θ| <= kSeriesMaxAngle, else from SinCosWide of |θ|/2 (|θ| up to
+// 2 kWideMaxAngle).
+inline Quaternion ExpMapWideIncrement(double angle_per_momentum, double momentum_norm, double lx,
+                                      double ly, double lz) {
+  const double tx = angle_per_momentum * lx, ty = angle_per_momentum * ly,
+               tz = angle_per_momentum * lz;
+  const Quaternion series = ExpMapSmallIncrement(tx, ty, tz);
+  const double angle = std::abs(angle_per_momentum) * momentum_norm;
+  const SinCosValues half = SinCosWide(0.5 * angle);
+  const double sin_ratio = half.sin / angle;  // NaN at 0, where the series is taken
+  const bool small = angle <= kSeriesMaxAngle;
+  return {small ? series.x : sin_ratio * tx, small ? series.y : sin_ratio * ty,
+          small ? series.z : sin_ratio * tz, small ? series.w : half.cos_minus_one};
 }
 
 // AddStepRotation (free_rotation.h) on plain numbers: `orientation` plus
