@@ -66,6 +66,8 @@ def parse_args():
                         help="run the pushed-capacity part (5); with no part flag, every part runs")
     parser.add_argument("--step-cost", action="store_true",
                         help="run the ~step cost part (6); with no part flag, every part runs")
+    parser.add_argument("--intake", action="store_true",
+                        help="run the wrench intake part (3); with no part flag, every part runs")
     parser.add_argument("--per-body-topics", choices=["true", "false"], default="true",
                         help="the scenes' ~per_body_topics (default true)")
     add_node_bench_arguments(parser, 11395, "node_load.md and node_load.csv")
@@ -904,7 +906,7 @@ def write_report(results, quick, elapsed):
 
 def main():
     quick = ARGS.quick
-    every_part = not (ARGS.capacity or ARGS.pushed or ARGS.step_cost)
+    every_part = not (ARGS.capacity or ARGS.pushed or ARGS.step_cost or ARGS.intake)
     start = time.monotonic()
     log("workspace %s, master %s, node on core %d, logs in %s"
         % (WS, os.environ["ROS_MASTER_URI"], ARGS.node_cpu, LOG_DIR))
@@ -918,7 +920,9 @@ def main():
             results["capacity"] = part_capacity(diag, quick, start + (20 if quick else 140))
         if every_part:
             results["cpu"] = part_cpu(diag, quick)
+        if every_part or ARGS.intake:
             results["intake"] = part_intake(diag, quick, start + (45 if quick else 250))
+        if every_part:
             results["latency"] = part_latency(diag, quick)
         if every_part or ARGS.pushed:
             results["pushed"] = part_capacity(diag, quick, time.monotonic() + (20 if quick else 140), pushed=True)

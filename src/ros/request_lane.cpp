@@ -7,7 +7,7 @@
 namespace rigid_body_sim {
 namespace {
 
-constexpr double kTrimPeriod_s = 0.5;
+constexpr double kTrimPeriod_s = 0.1;
 
 // A function as a callback of a ros::CallbackQueue.
 class FunctionCallback : public ros::CallbackInterface {

@@ -36,7 +36,7 @@ class RequestLane {
   ros::NodeHandle& node_handle() { return lane_nh_; }
 
   // Asks the lane to give the heap's free pages back to the system soon
-  // (within half a second), once a large request's buffers are freed: the
+  // (within a tenth of a second), once a large request's buffers are freed: the
   // heap keeps them otherwise. Any thread.
   void TrimMemorySoon() { trim_wanted_ = true; }
 
