@@ -58,37 +58,52 @@ World MakeFreeWorld(const std::string& integrator, double dt_s) {
   return World(std::move(models), std::move(states), options);
 }
 
+// Steps `world` `steps` times and, beside it, a copy of its states body by
+// body through `scheme`'s Step in as many substeps as the World takes;
+// returns the copy.
+std::vector<BodyState> StepBodyByBodyBeside(World* world, const std::string& scheme, int steps) {
+  std::vector<BodyState> expected = world->states();
+  const std::unique_ptr<Integrator> integrator = MakeIntegrator(scheme);
+  const double dt = world->options().dt_s;
+  for (int n = 0; n < steps; ++n) {
+    for (std::size_t i = 0; i < world->size(); ++i) {
+      const std::uint32_t substeps = world->SubstepsFor(i, world->state(i));
+      for (std::uint32_t k = 0; k < substeps; ++k) {
+        integrator->Step(world->model(i), nullptr, dt / substeps, &expected[i]);
+      }
+    }
+    world->Step();
+  }
+  return expected;
+}
+
+// Every body of `world` unfrozen and within `tolerance` of `expected` in
+// orientation [rad] and position [m].
+void ExpectPosesNear(const World& world, const std::vector<BodyState>& expected, double tolerance) {
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    SCOPED_TRACE("body " + std::to_string(i));
+    EXPECT_EQ(world.fault(i), BodyFault::kNone);
+    EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation), tolerance);
+    EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance);
+  }
+}
+
 class EveryScheme : public ::testing::TestWithParam<std::string> {};
 
 INSTANTIATE_TEST_SUITE_P(Core, EveryScheme, ::testing::ValuesIn(IntegratorNames()),
                          [](const auto& info) { return info.param; });
 
 TEST_P(EveryScheme, StepFreeOfABatchIsStepBodyByBody) {
-  const double dt = 1e-3;
-  World world = MakeFreeWorld(GetParam(), dt);
-  std::vector<BodyState> expected = world.states();
-  const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
+  World world = MakeFreeWorld(GetParam(), 1e-3);  // body 11 takes substeps
   const int steps = GetParam() == "exact_free" ? 50 : 1000;
-  for (int n = 0; n < steps; ++n) {
-    for (std::size_t i = 0; i < world.size(); ++i) {
-      const std::uint32_t substeps = world.SubstepsFor(i, world.state(i));  // body 11: > 1
-      for (std::uint32_t k = 0; k < substeps; ++k) {
-        integrator->Step(world.model(i), nullptr, dt / substeps, &expected[i]);
-      }
-    }
-    world.Step();
-  }
+  const std::vector<BodyState> expected = StepBodyByBodyBeside(&world, GetParam(), steps);
   // Round-off only: the lanes evaluate the same flows with series instead of
   // sin/cos and a Newton step instead of a division (each ~1e-16 per step),
   // so the two drift apart by ≲ 1e-16 × steps × a few.
-  const double tolerance = 1e-16 * steps * 10;
+  ExpectPosesNear(world, expected, 1e-16 * steps * 10);
   for (std::size_t i = 0; i < world.size(); ++i) {
-    SCOPED_TRACE("body " + std::to_string(i));
-    EXPECT_EQ(world.fault(i), BodyFault::kNone);
-    EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation), tolerance);
-    EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance);
-    EXPECT_EQ(world.state(i).angular_momentum, expected[i].angular_momentum);
-    EXPECT_EQ(world.state(i).linear_momentum, expected[i].linear_momentum);
+    EXPECT_EQ(world.state(i).angular_momentum, expected[i].angular_momentum) << "body " << i;
+    EXPECT_EQ(world.state(i).linear_momentum, expected[i].linear_momentum) << "body " << i;
   }
 }
 
@@ -112,25 +127,24 @@ TEST_P(CasimirScheme, StepFreeOfABatchAtLargeStepsIsStepBodyByBody) {
     if (one_step && !FitsFreeLanes(world.model(i), world.state(i), dt)) ++wide;
   }
   ASSERT_GE(wide, 8u);  // a full block of wide lanes
-  std::vector<BodyState> expected = world.states();
-  const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
   const int steps = GetParam() == "exact_free" ? 20 : 200;
-  for (int n = 0; n < steps; ++n) {
-    for (std::size_t i = 0; i < world.size(); ++i) {
-      const std::uint32_t substeps = world.SubstepsFor(i, world.state(i));
-      for (std::uint32_t k = 0; k < substeps; ++k) {
-        integrator->Step(world.model(i), nullptr, dt / substeps, &expected[i]);
-      }
-    }
-    world.Step();
-  }
-  const double tolerance = 1e-16 * steps * 10;
+  const std::vector<BodyState> expected = StepBodyByBodyBeside(&world, GetParam(), steps);
+  ExpectPosesNear(world, expected, 1e-16 * steps * 10);
+}
+
+// A World of `models` in `states` stepped by `scheme` at 0.25 s, every body
+// of which takes one step past the series' range: the wide lanes.
+World WideLanesWorld(const std::string& scheme, const std::vector<BodyModel>& models,
+                     const std::vector<BodyState>& states) {
+  WorldOptions options;
+  options.integrator = scheme;
+  options.dt_s = 0.25;
+  World world(models, states, options);
   for (std::size_t i = 0; i < world.size(); ++i) {
-    SCOPED_TRACE("body " + std::to_string(i));
-    EXPECT_EQ(world.fault(i), BodyFault::kNone);
-    EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation), tolerance);
-    EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance);
+    EXPECT_FALSE(FitsFreeLanes(world.model(i), world.state(i), options.dt_s)) << "body " << i;
+    EXPECT_EQ(world.SubstepsFor(i, world.state(i)), 1u) << "body " << i;
   }
+  return world;
 }
 
 TEST(FreeLanes, TopsAndSpheresAreExactAtLargeSteps) {
@@ -153,14 +167,7 @@ TEST(FreeLanes, TopsAndSpheresAreExactAtLargeSteps) {
   }
   const std::vector<BodyState> initial = states;
   for (const char* name : {"casimir_splitting4", "casimir_rkn4", "casimir_rkn6"}) {
-    WorldOptions options;
-    options.integrator = name;
-    options.dt_s = 0.25;
-    World world(models, states, options);
-    for (std::size_t i = 0; i < world.size(); ++i) {
-      ASSERT_FALSE(FitsFreeLanes(world.model(i), world.state(i), options.dt_s));
-      ASSERT_EQ(world.SubstepsFor(i, world.state(i)), 1u);
-    }
+    World world = WideLanesWorld(name, models, states);
     for (int n = 0; n < 40; ++n) world.Step();
     for (std::size_t i = 0; i < world.size(); ++i) {
       SCOPED_TRACE(std::string(name) + ", body " + std::to_string(i));
@@ -191,23 +198,9 @@ TEST(FreeLanes, NearlySymmetricBodiesAtLargeStepsAreStepBodyByBody) {
     states.push_back(state);
   }
   for (const char* name : {"casimir_splitting4", "casimir_rkn4", "casimir_rkn6"}) {
-    WorldOptions options;
-    options.integrator = name;
-    options.dt_s = 0.25;
-    World world(models, states, options);
-    for (std::size_t i = 0; i < world.size(); ++i) {
-      ASSERT_FALSE(FitsFreeLanes(world.model(i), world.state(i), options.dt_s));
-      ASSERT_EQ(world.SubstepsFor(i, world.state(i)), 1u);
-    }
-    std::vector<BodyState> expected = states;
-    const std::unique_ptr<Integrator> integrator = MakeIntegrator(name);
+    World world = WideLanesWorld(name, models, states);
     const int steps = 200;
-    for (int n = 0; n < steps; ++n) {
-      for (std::size_t i = 0; i < world.size(); ++i) {
-        integrator->Step(world.model(i), nullptr, options.dt_s, &expected[i]);
-      }
-      world.Step();
-    }
+    const std::vector<BodyState> expected = StepBodyByBodyBeside(&world, name, steps);
     // Each of a step's turns (at most 21 axis flows and the one about L) is
     // off by a few ulps of its angle, which is up to θ_max = dt |L| max 1/λ
     // (1.5 rad here): SinCosWide's 2 ulps, the library's half, the angle's own
@@ -215,8 +208,8 @@ TEST(FreeLanes, NearlySymmetricBodiesAtLargeStepsAreStepBodyByBody) {
     const double turn_bound = 22 * 4 * std::numeric_limits<double>::epsilon();
     for (std::size_t i = 0; i < world.size(); ++i) {
       SCOPED_TRACE(std::string(name) + ", body " + std::to_string(i));
-      const double max_angle =
-          TurnPerMomentum(world.model(i), options.dt_s) * world.state(i).angular_momentum.norm();
+      const double max_angle = TurnPerMomentum(world.model(i), world.options().dt_s) *
+                               world.state(i).angular_momentum.norm();
       EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation),
                 steps * turn_bound * max_angle);
       EXPECT_LT((world.state(i).position - expected[i].position).norm(), 1e-16 * steps * 10);
