@@ -48,6 +48,11 @@ inline std::uint64_t Select(std::uint64_t mask, std::uint64_t if_set, std::uint6
 
 }  // namespace sin_cos_detail
 
+// sin x, cos x and cos x − 1 of one angle.
+struct SinCosValues {
+  double sin, cos, cos_minus_one;
+};
+
 // |x| <= kWideMaxAngle: x = n π/2 + r with |r| <= π/4, then the Taylor series
 // of sin r to r¹⁷ and of cos r − 1 to r¹⁸ (truncated below 2e-19 relative at
 // π/4), moved to x's quadrant by the low bits of n (sign flips and a swap as
@@ -56,10 +61,6 @@ inline std::uint64_t Select(std::uint64_t mask, std::uint64_t if_set, std::uint6
 // |n| < 2^20 and r is found to the round-off of its last subtraction.
 // Where n ≡ 0 (mod 4), cos x − 1 is the series' own; elsewhere cos x is
 // at most cos(π/4) and cos x − 1 loses nothing.
-struct SinCosValues {
-  double sin, cos, cos_minus_one;
-};
-
 inline SinCosValues SinCosWide(double x) {
   namespace d = sin_cos_detail;
   constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
@@ -95,14 +96,14 @@ inline SinCosValues SinCosWide(double x) {
   const std::uint64_t swap = 0 - (quadrant & 1);  // quadrants 1 and 3: sin ↔ cos
   const std::uint64_t sin_sign = (quadrant & 2) << 62;
   const std::uint64_t cos_sign = ((quadrant + 1) & 2) << 62;
-  const std::uint64_t first_quadrant = ((quadrant | (quadrant >> 1)) & 1) - 1;
+  const std::uint64_t whole_turns = ((quadrant | (quadrant >> 1)) & 1) - 1;  // n ≡ 0 (mod 4)
   const std::uint64_t sin_r_bits = d::Bits(sin_r);
   const std::uint64_t cos_r_bits = d::Bits(1.0 + cos_r_minus_one);
   SinCosValues values;
   values.sin = d::FromBits(d::Select(swap, cos_r_bits, sin_r_bits) ^ sin_sign);
   values.cos = d::FromBits(d::Select(swap, sin_r_bits, cos_r_bits) ^ cos_sign);
   values.cos_minus_one =
-      d::FromBits(d::Select(first_quadrant, d::Bits(cos_r_minus_one), d::Bits(values.cos - 1.0)));
+      d::FromBits(d::Select(whole_turns, d::Bits(cos_r_minus_one), d::Bits(values.cos - 1.0)));
   return values;
 }
 
