@@ -1,6 +1,7 @@
 #include "rigid_body_sim/core/held_loads.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <stdexcept>
 
@@ -11,6 +12,10 @@ namespace {
 Eigen::Vector3d VeeOfAntisymmetricPart(const Eigen::Matrix3d& m) {
   return Eigen::Vector3d(m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1));
 }
+
+// The last PrincipalParts::stamp given; atomic, as threads stepping different
+// bodies compute their parts at once.
+std::atomic<std::uint64_t> last_principal_stamp{0};
 
 }  // namespace
 
@@ -58,9 +63,13 @@ void HeldLoads::AddBodyCouple(const Eigen::Vector3d& couple) {
   has_body_axes_ = true;
 }
 
-void HeldLoads::AddCentralForce(const Eigen::Vector3d& force) { force_world_ += force; }
+void HeldLoads::AddCentralForce(const Eigen::Vector3d& force) {
+  has_principal_parts_ = false;  // their stamp covers F_W too
+  force_world_ += force;
+}
 
 void HeldLoads::SetTorqueProjector(const Eigen::Matrix3d& range_projector) {
+  has_principal_parts_ = false;
   torque_projector_ = range_projector;
   projects_torque_ = !range_projector.isIdentity(0.0);
 }
@@ -71,6 +80,7 @@ void HeldLoads::SetDamping(double linear_per_s, double angular_per_s) {
       std::isinf(angular_per_s)) {
     throw std::invalid_argument("damping rates must be finite and >= 0 [1/s]");
   }
+  has_principal_parts_ = false;
   damping_ = {linear_per_s, angular_per_s};
   has_damping_ = linear_per_s > 0.0 || angular_per_s > 0.0;
 }
@@ -95,7 +105,8 @@ double HeldLoads::NewTorqueBound() const {
 const HeldLoads::PrincipalParts& HeldLoads::NewPrincipalParts(
     const Eigen::Quaterniond& body_from_principal) const {
   const Eigen::Matrix3d r = body_from_principal.toRotationMatrix();
-  principal_parts_ = {body_from_principal, r.transpose() * force_body_,
+  const std::uint64_t stamp = last_principal_stamp.fetch_add(1, std::memory_order_relaxed) + 1;
+  principal_parts_ = {stamp, body_from_principal, r.transpose() * force_body_,
                       r.transpose() * torque_body_, force_moment_ * r};
   has_principal_parts_ = true;
   return principal_parts_;

@@ -139,6 +139,7 @@ void World::Step() {
     share.frozen = 0;
     share.dropped_couples = 0;
     share.substeps_max = 1;
+    share.lane_cache.StartStep();
   }
   auto step_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
     StepBlock(begin, end, &shares_[member]);
@@ -220,18 +221,26 @@ void World::RecordStepStart() {
   }
 }
 
-BodyBatch World::Batch(const std::vector<std::size_t>& indices) {
+BodyBatch World::Batch(const std::vector<std::size_t>& indices, Share* share) {
   BodyHotColumns& hot = bodies_.hot();
   ExactFreeFlow* free_flows = hot.free_flows.empty() ? nullptr : hot.free_flows.data();
-  return {hot.models.data(), hot.loads.data(), hot.states.data(),
-          indices.data(),    indices.size(),   free_flows};
+  return {hot.models.data(), hot.loads.data(), hot.states.data(), indices.data(),
+          indices.size(),    free_flows,       &share->lane_cache};
 }
 
 void World::StepLoadedBatch(Share* share) {
   if (share->loaded_batch.empty()) return;
-  integrator_->StepLoaded(Batch(share->loaded_batch), options_.dt_s);
+  integrator_->StepLoaded(Batch(share->loaded_batch, share), options_.dt_s);
+  // FinishStep without the projection: a batched body is full rank.
+  BodyHotColumns& hot = bodies_.hot();
   for (std::size_t k = 0; k < share->loaded_batch.size(); ++k) {
-    FinishStep(share->loaded_batch[k], share->loaded_batch_before[k], share);
+    const std::size_t index = share->loaded_batch[k];
+    BodyState& state = hot.states[index];
+    const BodyFault fault = CheckState(hot.models[index], state);
+    if (fault != BodyFault::kNone) {
+      state = share->loaded_batch_before[k];
+      Freeze(index, fault, share);
+    }
   }
   share->loaded_batch.clear();
   share->loaded_batch_before.clear();
@@ -239,7 +248,7 @@ void World::StepLoadedBatch(Share* share) {
 
 void World::StepFreeBatch(Share* share) {
   if (share->free_batch.empty()) return;
-  integrator_->StepFree(Batch(share->free_batch), options_.dt_s);
+  integrator_->StepFree(Batch(share->free_batch, share), options_.dt_s);
   for (std::size_t k = 0; k < share->free_batch.size(); ++k) {
     BodyState& state = bodies_.hot().states[share->free_batch[k]];
     const BodyFault fault = CheckPose(state);

@@ -6,6 +6,8 @@
 // torques (τ_B includes Σ r̄_i × g_i of body-axes particle forces g_i).
 #pragma once
 
+#include <cstdint>
+
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -13,7 +15,7 @@
 
 namespace rigid_body_sim::core {
 
-class HeldLoads final : public Load {
+class alignas(64) HeldLoads final : public Load {
  public:
   void Clear();
   // A force at the particle with offset r̄ (body axes), given in world axes.
@@ -55,6 +57,10 @@ class HeldLoads final : public Load {
   // rotation `body_from_principal`: R_BPᵀ F_B, R_BPᵀ τ_B and C R_BP, so that a
   // kernel working in P needs R_WP alone. Kept until the loads change.
   struct PrincipalParts {
+    // Unique to this computation among all of the process's: equal stamps
+    // mean the same loads (every part, the damping too) in the same frame P,
+    // so a kernel that kept a copy of them may skip copying them again.
+    std::uint64_t stamp;
     Eigen::Quaterniond body_from_principal;
     Eigen::Vector3d force_body;    // R_BPᵀ F_B
     Eigen::Vector3d torque_body;   // R_BPᵀ τ_B
@@ -82,20 +88,26 @@ class HeldLoads final : public Load {
   double NewTorqueBound() const;
   // Computes InPrincipalFrame and keeps it until the loads or the frame change.
   const PrincipalParts& NewPrincipalParts(const Eigen::Quaterniond& body_from_principal) const;
-  Eigen::Vector3d force_world_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d force_body_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d torque_world_ = Eigen::Vector3d::Zero();
-  Eigen::Vector3d torque_body_ = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d force_moment_ = Eigen::Matrix3d::Zero();  // C = Σ f_i r̄_iᵀ
-  Eigen::Matrix3d torque_projector_ = Eigen::Matrix3d::Identity();
-  Damping damping_;
-  mutable double torque_bound_ = -1.0;  // TorqueBound, once asked; < 0: not yet
-  mutable PrincipalParts principal_parts_;
-  mutable bool has_principal_parts_ = false;  // principal_parts_ holds for these loads
+
+  // Hot: what a loaded step reads for every body (the flags, the bound, the
+  // world parts, the principal parts, the damping), first and together in
+  // four cache lines: the store keeps one HeldLoads per body in one array,
+  // and the step streams through it.
   bool has_torque_ = false;
   bool has_body_axes_ = false;
   bool has_damping_ = false;  // a rate of damping_ is > 0
   bool projects_torque_ = false;
+  mutable bool has_principal_parts_ = false;  // principal_parts_ holds for these loads
+  mutable double torque_bound_ = -1.0;        // TorqueBound, once asked; < 0: not yet
+  Eigen::Vector3d force_world_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque_world_ = Eigen::Vector3d::Zero();
+  mutable PrincipalParts principal_parts_;
+  Damping damping_;
+  // Cold: read when the loads change or a wrench is asked for outside a step.
+  Eigen::Vector3d force_body_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d torque_body_ = Eigen::Vector3d::Zero();
+  Eigen::Matrix3d force_moment_ = Eigen::Matrix3d::Zero();  // C = Σ f_i r̄_iᵀ
+  Eigen::Matrix3d torque_projector_ = Eigen::Matrix3d::Identity();
 };
 
 }  // namespace rigid_body_sim::core

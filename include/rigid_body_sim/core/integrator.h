@@ -15,6 +15,7 @@ namespace rigid_body_sim::core {
 
 class Integrator;
 class ExactFreeFlow;
+class LaneCache;
 
 // Bodies handed to a scheme together: their indices and the columns (of a
 // BodyStore) that their steps read and write, indexed by those indices.
@@ -27,6 +28,9 @@ struct BodyBatch {
   // The flows kept per body, for a scheme that continues them
   // (Integrator::continues_free_flows); null otherwise.
   ExactFreeFlow* free_flows = nullptr;
+  // The calling thread's cache (lane_cache.h), kept by the World from step
+  // to step; null: none.
+  LaneCache* lane_cache = nullptr;
 
   const std::size_t* begin() const { return indices; }
   const std::size_t* end() const { return indices + size; }

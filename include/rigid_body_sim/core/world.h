@@ -19,6 +19,7 @@
 #include "rigid_body_sim/core/body_store.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/lane_cache.h"
 #include "rigid_body_sim/core/step_policy.h"
 #include "rigid_body_sim/core/step_record.h"
 #include "rigid_body_sim/core/thread_team.h"
@@ -183,6 +184,7 @@ class World {
     // through Integrator::StepLoaded, and their states before it.
     std::vector<std::size_t> loaded_batch;
     std::vector<BodyState> loaded_batch_before;
+    LaneCache lane_cache;
     std::size_t frozen = 0;
     std::uint64_t dropped_couples = 0;
     std::uint32_t substeps_max = 1;
@@ -207,8 +209,9 @@ class World {
   void StepFreeBatch(Share* share);
   // The same for share->loaded_batch through StepLoaded.
   void StepLoadedBatch(Share* share);
-  // The bodies `indices` with the store's columns, for the integrator.
-  BodyBatch Batch(const std::vector<std::size_t>& indices);
+  // The bodies `indices` with the store's columns and `share`'s cache, for
+  // the integrator.
+  BodyBatch Batch(const std::vector<std::size_t>& indices, Share* share);
 
   BodyStore bodies_;
   std::vector<BodyListener*> listeners_;

@@ -4,6 +4,18 @@
 
 namespace rigid_body_sim::core {
 
+LaneCache::LaneCache() = default;
+LaneCache::~LaneCache() = default;
+LaneCache::LaneCache(LaneCache&&) noexcept = default;
+LaneCache& LaneCache::operator=(LaneCache&&) noexcept = default;
+
+LoadedLanes& LaneCache::NextLoadedBlock(std::size_t group) {
+  std::vector<std::unique_ptr<LoadedLanes>>& blocks = loaded_blocks_[group];
+  const std::size_t next = next_loaded_[group]++;
+  if (next == blocks.size()) blocks.push_back(std::make_unique<LoadedLanes>());
+  return *blocks[next];
+}
+
 using lanes::ExpMapSmall;
 using lanes::Quaternion;
 
@@ -19,6 +31,7 @@ void LoadedLanes::FillIdle(std::size_t first) {
     for (int k = 0; k < 9; ++k) moment[k][l] = 0.0;
     linear_damping[l] = 0.0;
     angular_damping[l] = 0.0;
+    load_stamp[l] = 0;
   }
 }
 
@@ -26,11 +39,13 @@ void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const BodyState
                        const HeldLoads& loads) {
   LaneBodies::Load(lane, model, state);
   body_axes = body_axes || loads.has_body_axes();
+  damped = damped || loads.has_damping();
+  const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
+  if (load_stamp[lane] == principal.stamp) return;
+  load_stamp[lane] = principal.stamp;
   const Damping damping = loads.damping();
   linear_damping[lane] = damping.linear_per_s;
   angular_damping[lane] = damping.angular_per_s;
-  damped = damped || loads.has_damping();
-  const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
   for (int k = 0; k < 3; ++k) {
     force_world[k][lane] = loads.force_world()[k];
     force_principal[k][lane] = principal.force_body[k];

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <type_traits>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
+#include "rigid_body_sim/core/lane_cache.h"
 
 namespace rigid_body_sim::core {
 
@@ -28,11 +30,16 @@ struct LoadedLanes : LaneBodies {
   double moment[9][kLanes];        // C_P = C R_BP, row-major
   double linear_damping[kLanes];   // [1/s]
   double angular_damping[kLanes];  // [1/s]
+  // The HeldLoads::PrincipalParts::stamp of the load parts each lane holds;
+  // 0: none (stamps start at 1).
+  std::uint64_t load_stamp[kLanes] = {};
   // Whether a lane loaded since the last step holds a body-axes force or couple.
   bool body_axes = false;
   // Whether a lane loaded since the last step is damped.
   bool damped = false;
 
+  // Copies the body into `lane`; its load parts only when the lane does not
+  // hold them already (load_stamp).
   void Load(std::size_t lane, const BodyModel& model, const BodyState& state,
             const HeldLoads& loads);
   // LaneBodies::FillIdle with no load.
@@ -53,7 +60,8 @@ void CasimirLoadedStep4(double h, LoadedLanes* lanes);
 // is loaded however small its wrench, which keeps damping out of the free
 // lanes. Other bodies that fit take
 // `loaded_lanes(dt_s, lanes)` (nullptr: a scheme without them), the rest
-// `step_one(model, load, dt_s, state)`.
+// `step_one(model, load, dt_s, state)`. The blocks of loaded lanes come from
+// batch.lane_cache (or, without one, from a cache of this call alone).
 template <typename LoadedKernel, typename StepOne>
 void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels& free_lanes,
                        LoadedKernel loaded_lanes, StepOne step_one) {
@@ -74,19 +82,22 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
   // result does not depend on which bodies share its lanes (a damped
   // instance rounds an undamped lane's kick differently), and so not on the
   // batches or threads of the World.
-  constexpr std::size_t kGroups = 4;
-  LoadedLanes turned[kGroups];
+  constexpr std::size_t kGroups = LaneCache::kLoadedGroups;
+  LaneCache call_cache;
+  LaneCache& cache = batch.lane_cache != nullptr ? *batch.lane_cache : call_cache;
+  LoadedLanes* turned[kGroups] = {};  // each group's block being filled
   std::size_t turned_bodies[kGroups][kLanes];
   std::size_t turned_count[kGroups] = {};
   const auto flush_turned = [&](std::size_t group) {
     if constexpr (kHasLoadedLanes) {
-      LoadedLanes& lanes = turned[group];
+      LoadedLanes& lanes = *turned[group];
       const std::size_t count = turned_count[group];
       if (count < kLanes) lanes.FillIdle(count);
       loaded_lanes(dt_s, &lanes);
       for (std::size_t l = 0; l < count; ++l)
         lanes.Store(l, &batch.states[turned_bodies[group][l]]);
     }
+    turned[group] = nullptr;
     turned_count[group] = 0;
   };
   for (const std::size_t body : batch) {
@@ -100,7 +111,8 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     } else if (kHasLoadedLanes && FitsLoadedLanes(model, state, load, dt_s) &&
                (!damped || DampingFitsLoadedLanes(load.damping(), dt_s))) {
       const std::size_t group = (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
-      turned[group].Load(turned_count[group], model, state, load);
+      if (turned[group] == nullptr) turned[group] = &cache.NextLoadedBlock(group);
+      turned[group]->Load(turned_count[group], model, state, load);
       turned_bodies[group][turned_count[group]++] = body;
       if (turned_count[group] == kLanes) flush_turned(group);
     } else {
