@@ -23,6 +23,11 @@ constexpr double kDroppedCoupleTolerance_Nm = 1e-9;
 // enough that their states are still in cache when they are checked.
 constexpr std::size_t kBatch = 64;
 
+// Substep batches (of distinct n) a thread keeps open at once; a body whose
+// n finds none free steps alone. Bodies needing substeps are the few that
+// spin fast at a scene's dt, or many at a large dt with similar n.
+constexpr std::size_t kSubstepBatches = 8;
+
 // Bodies a thread takes at a time in a Step: tens of microseconds of work for
 // free bodies (bench/README.md, "Threads"), long against taking a block (one
 // atomic add), short against a step of a scene large enough to want threads.
@@ -56,6 +61,7 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
     share.free_batch_before.reserve(kBatch);
     share.loaded_batch.reserve(kBatch);
     share.loaded_batch_before.reserve(kBatch);
+    share.substep_batches.reserve(kSubstepBatches);
   }
   team_ = std::make_unique<ThreadTeam>(options_.threads);
 }
@@ -192,6 +198,10 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
           ++share->dropped_couples;
         }
         share->substeps_max = std::max(share->substeps_max, plan.substeps);
+        if (model.is_full_rank() && !integrator.continues_free_flows() &&
+            BatchSubsteps(i, plan.substeps, load != nullptr, share)) {
+          break;
+        }
         const BodyState before = state;
         const double h = dt_s / plan.substeps;
         for (std::uint32_t k = 0; k < plan.substeps; ++k) integrator.Step(model, load, h, &state);
@@ -202,6 +212,57 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   }
   StepFreeBatch(share);
   StepLoadedBatch(share);
+  for (Share::SubstepBatch& batch : share->substep_batches) StepSubstepBatch(&batch, share);
+}
+
+bool World::BatchSubsteps(std::size_t index, std::uint32_t substeps, bool loaded, Share* share) {
+  std::vector<Share::SubstepBatch>& batches = share->substep_batches;
+  auto batch = std::find_if(batches.begin(), batches.end(), [&](const Share::SubstepBatch& b) {
+    return b.substeps == substeps && b.loaded == loaded;
+  });
+  if (batch == batches.end()) {
+    batch = std::find_if(batches.begin(), batches.end(),
+                         [](const Share::SubstepBatch& b) { return b.bodies.empty(); });
+  }
+  if (batch == batches.end()) {
+    if (batches.size() == kSubstepBatches) return false;
+    batch = batches.emplace(batches.end());
+  }
+  batch->substeps = substeps;
+  batch->loaded = loaded;
+  batch->bodies.push_back(index);
+  batch->before.push_back(bodies_.hot().states[index]);
+  if (batch->bodies.size() == kBatch) StepSubstepBatch(&*batch, share);
+  return true;
+}
+
+void World::StepSubstepBatch(Share::SubstepBatch* batch, Share* share) {
+  if (batch->bodies.empty()) return;
+  const BodyBatch bodies = Batch(batch->bodies, &batch->lane_cache);
+  const double h = options_.dt_s / batch->substeps;
+  if (bodies.size == 1) {
+    // Alone, a body costs the lanes a whole block: the scalar step is cheaper.
+    const std::size_t index = batch->bodies[0];
+    BodyHotColumns& hot = bodies_.hot();
+    const HeldLoads* load = batch->loaded ? &hot.loads[index] : nullptr;
+    for (std::uint32_t k = 0; k < batch->substeps; ++k) {
+      integrator_->Step(hot.models[index], load, h, &hot.states[index]);
+    }
+  } else {
+    for (std::uint32_t k = 0; k < batch->substeps; ++k) {
+      batch->lane_cache.StartStep();
+      if (batch->loaded) {
+        integrator_->StepLoaded(bodies, h);
+      } else {
+        integrator_->StepFree(bodies, h);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < batch->bodies.size(); ++k) {
+    FinishStep(batch->bodies[k], batch->before[k], share);
+  }
+  batch->bodies.clear();
+  batch->before.clear();
 }
 
 void World::RecordStepStart() {
@@ -221,16 +282,21 @@ void World::RecordStepStart() {
   }
 }
 
-BodyBatch World::Batch(const std::vector<std::size_t>& indices, Share* share) {
+BodyBatch World::Batch(const std::vector<std::size_t>& indices, LaneCache* cache) {
   BodyHotColumns& hot = bodies_.hot();
   ExactFreeFlow* free_flows = hot.free_flows.empty() ? nullptr : hot.free_flows.data();
-  return {hot.models.data(), hot.loads.data(), hot.states.data(), indices.data(),
-          indices.size(),    free_flows,       &share->lane_cache};
+  return {hot.models.data(),
+          hot.loads.data(),
+          hot.states.data(),
+          indices.data(),
+          indices.size(),
+          free_flows,
+          cache};
 }
 
 void World::StepLoadedBatch(Share* share) {
   if (share->loaded_batch.empty()) return;
-  integrator_->StepLoaded(Batch(share->loaded_batch, share), options_.dt_s);
+  integrator_->StepLoaded(Batch(share->loaded_batch, &share->lane_cache), options_.dt_s);
   // FinishStep without the projection: a batched body is full rank.
   BodyHotColumns& hot = bodies_.hot();
   for (std::size_t k = 0; k < share->loaded_batch.size(); ++k) {
@@ -248,7 +314,7 @@ void World::StepLoadedBatch(Share* share) {
 
 void World::StepFreeBatch(Share* share) {
   if (share->free_batch.empty()) return;
-  integrator_->StepFree(Batch(share->free_batch, share), options_.dt_s);
+  integrator_->StepFree(Batch(share->free_batch, &share->lane_cache), options_.dt_s);
   for (std::size_t k = 0; k < share->free_batch.size(); ++k) {
     BodyState& state = bodies_.hot().states[share->free_batch[k]];
     const BodyFault fault = CheckPose(state);

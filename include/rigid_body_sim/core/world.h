@@ -184,6 +184,18 @@ class World {
     // through Integrator::StepLoaded, and their states before it.
     std::vector<std::size_t> loaded_batch;
     std::vector<BodyState> loaded_batch_before;
+    // Full-rank bodies that need n > 1 substeps, batched by n and by whether
+    // they are loaded: a batch takes n steps of dt/n through StepFree or
+    // StepLoaded, so through the lanes as well, with a cache of its own that
+    // each of the n steps starts again. An empty batch is free for any n.
+    struct SubstepBatch {
+      std::uint32_t substeps = 0;
+      bool loaded = false;
+      std::vector<std::size_t> bodies;
+      std::vector<BodyState> before;
+      LaneCache lane_cache;
+    };
+    std::vector<SubstepBatch> substep_batches;  // at most kSubstepBatches
     LaneCache lane_cache;
     std::size_t frozen = 0;
     std::uint64_t dropped_couples = 0;
@@ -209,9 +221,15 @@ class World {
   void StepFreeBatch(Share* share);
   // The same for share->loaded_batch through StepLoaded.
   void StepLoadedBatch(Share* share);
-  // The bodies `indices` with the store's columns and `share`'s cache, for
-  // the integrator.
-  BodyBatch Batch(const std::vector<std::size_t>& indices, Share* share);
+  // Adds body `index` to the substep batch of its n and kind, stepping the
+  // batch when full; false (and nothing done) when every batch is taken by
+  // another n.
+  bool BatchSubsteps(std::size_t index, std::uint32_t substeps, bool loaded, Share* share);
+  // Steps `batch` n times by dt/n, checks each body, and empties it.
+  void StepSubstepBatch(Share::SubstepBatch* batch, Share* share);
+  // The bodies `indices` with the store's columns and `cache`, for the
+  // integrator.
+  BodyBatch Batch(const std::vector<std::size_t>& indices, LaneCache* cache);
 
   BodyStore bodies_;
   std::vector<BodyListener*> listeners_;
