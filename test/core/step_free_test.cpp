@@ -24,8 +24,8 @@ namespace {
 BodyBatch Batch(const World& world, const std::vector<HeldLoads>& loads,
                 const std::vector<std::size_t>& indices, std::vector<BodyState>* states,
                 LaneCache* cache = nullptr) {
-  return {world.models().data(), loads.data(), states->data(), indices.data(), indices.size(),
-          nullptr,               cache};
+  return {world.models().data(), loads.data(), states->data(), indices.data(),
+          indices.size(),        nullptr,      cache};
 }
 
 // 19 free bodies (two full blocks of eight lanes and three more): asymmetric,
@@ -90,6 +90,22 @@ void ExpectPosesNear(const World& world, const std::vector<BodyState>& expected,
     EXPECT_EQ(world.fault(i), BodyFault::kNone);
     EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation), tolerance);
     EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance);
+  }
+}
+
+// Every body of `world` unfrozen and within round-off of `expected`: the
+// orientation within `tolerance` [rad]; x, p and L, which reach ~10 in SI
+// units, within 10·tolerance.
+void ExpectStatesNear(const World& world, const std::vector<BodyState>& expected,
+                      double tolerance) {
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    SCOPED_TRACE("body " + std::to_string(i));
+    const BodyState& state = world.state(i);
+    EXPECT_EQ(world.fault(i), BodyFault::kNone);
+    EXPECT_LT(test::AngleBetween(state.orientation, expected[i].orientation), tolerance);
+    EXPECT_LT((state.position - expected[i].position).norm(), tolerance * 10);
+    EXPECT_LT((state.linear_momentum - expected[i].linear_momentum).norm(), tolerance * 10);
+    EXPECT_LT((state.angular_momentum - expected[i].angular_momentum).norm(), tolerance * 10);
   }
 }
 
@@ -267,19 +283,8 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
     }
     world.Step();
   }
-  // Round-off as above, on states that now move in every component; p and L
-  // grow to ~10, so their tolerance scales with them.
-  const double tolerance = 1e-16 * steps * 10;
-  for (std::size_t i = 0; i < world.size(); ++i) {
-    SCOPED_TRACE("body " + std::to_string(i));
-    EXPECT_EQ(world.fault(i), BodyFault::kNone);
-    EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation), tolerance);
-    EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance * 10);
-    EXPECT_LT((world.state(i).linear_momentum - expected[i].linear_momentum).norm(),
-              tolerance * 10);
-    EXPECT_LT((world.state(i).angular_momentum - expected[i].angular_momentum).norm(),
-              tolerance * 10);
-  }
+  // Round-off as above, on states that now move in every component.
+  ExpectStatesNear(world, expected, 1e-16 * steps * 10);
 }
 
 TEST_P(EveryScheme, StepLoadedOfADampedBatchIsStepBodyByBody) {
@@ -419,16 +424,7 @@ TEST_P(EveryScheme, SubsteppedBodiesInBatchesAreStepBodyByBody) {
     substeps_max = std::max(substeps_max, world.last_step_substeps_max());
   }
   EXPECT_GT(substeps_max, 1u);
-  // Round-off per substep, on |L| up to ~10 kg m²/s.
-  const double tolerance = 1e-16 * steps * substeps_max * 10;
-  for (std::size_t i = 0; i < world.size(); ++i) {
-    SCOPED_TRACE("body " + std::to_string(i));
-    EXPECT_EQ(world.fault(i), BodyFault::kNone);
-    EXPECT_LT(test::AngleBetween(world.state(i).orientation, expected[i].orientation), tolerance);
-    EXPECT_LT((world.state(i).position - expected[i].position).norm(), tolerance * 10);
-    EXPECT_LT((world.state(i).angular_momentum - expected[i].angular_momentum).norm(),
-              tolerance * 10);
-  }
+  ExpectStatesNear(world, expected, 1e-16 * steps * substeps_max * 10);  // round-off per substep
 }
 
 TEST_P(EveryScheme, StepLoadedWithALaneCacheIsStepLoadedWithout) {
