@@ -89,10 +89,11 @@ class alignas(64) HeldLoads final : public Load {
   // Computes InPrincipalFrame and keeps it until the loads or the frame change.
   const PrincipalParts& NewPrincipalParts(const Eigen::Quaterniond& body_from_principal) const;
 
-  // Hot: what a loaded step reads for every body (the flags, the bound, the
-  // world parts, the principal parts, the damping), first and together in
-  // four cache lines: the store keeps one HeldLoads per body in one array,
-  // and the step streams through it.
+  // Hot: what a loaded step reads for every body, first and together: the
+  // store keeps one HeldLoads per body in one array, and the step streams
+  // through it. A lane that keeps its body's parts (casimir_loaded_lanes.h)
+  // reads the flags, the bound, the stamp and the frame, all in the first two
+  // cache lines; one that copies them reads on to the damping.
   bool has_torque_ = false;
   bool has_body_axes_ = false;
   bool has_damping_ = false;  // a rate of damping_ is > 0
