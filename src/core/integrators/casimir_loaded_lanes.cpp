@@ -1,5 +1,7 @@
 #include "casimir_loaded_lanes.h"
 
+#include <algorithm>
+
 #include "step_parts.h"
 
 namespace rigid_body_sim::core {
@@ -11,7 +13,7 @@ LaneCache& LaneCache::operator=(LaneCache&&) noexcept = default;
 
 LoadedLanes& LaneCache::NextLoadedBlock(std::size_t group) {
   std::vector<std::unique_ptr<LoadedLanes>>& blocks = loaded_blocks_[group];
-  const std::size_t next = next_loaded_[group]++;
+  const std::size_t next = std::min(next_loaded_[group]++, kKeptBlocks);
   if (next == blocks.size()) blocks.push_back(std::make_unique<LoadedLanes>());
   return *blocks[next];
 }
