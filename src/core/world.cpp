@@ -203,8 +203,7 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
           break;
         }
         const BodyState before = state;
-        const double h = dt_s / plan.substeps;
-        for (std::uint32_t k = 0; k < plan.substeps; ++k) integrator.Step(model, load, h, &state);
+        StepAlone(i, plan.substeps, load);
         FinishStep(i, before, share);
         break;
       }
@@ -239,16 +238,12 @@ bool World::BatchSubsteps(std::size_t index, std::uint32_t substeps, bool loaded
 void World::StepSubstepBatch(Share::SubstepBatch* batch, Share* share) {
   if (batch->bodies.empty()) return;
   const BodyBatch bodies = Batch(batch->bodies, &batch->lane_cache);
-  const double h = options_.dt_s / batch->substeps;
   if (bodies.size == 1) {
     // Alone, a body costs the lanes a whole block: the scalar step is cheaper.
     const std::size_t index = batch->bodies[0];
-    BodyHotColumns& hot = bodies_.hot();
-    const HeldLoads* load = batch->loaded ? &hot.loads[index] : nullptr;
-    for (std::uint32_t k = 0; k < batch->substeps; ++k) {
-      integrator_->Step(hot.models[index], load, h, &hot.states[index]);
-    }
+    StepAlone(index, batch->substeps, batch->loaded ? &bodies_.hot().loads[index] : nullptr);
   } else {
+    const double h = options_.dt_s / batch->substeps;
     for (std::uint32_t k = 0; k < batch->substeps; ++k) {
       batch->lane_cache.StartStep();
       if (batch->loaded) {
@@ -259,7 +254,7 @@ void World::StepSubstepBatch(Share::SubstepBatch* batch, Share* share) {
     }
   }
   for (std::size_t k = 0; k < batch->bodies.size(); ++k) {
-    FinishStep(batch->bodies[k], batch->before[k], share);
+    CheckOrRestore(batch->bodies[k], batch->before[k], share);  // batched bodies are full rank
   }
   batch->bodies.clear();
   batch->before.clear();
@@ -297,16 +292,8 @@ BodyBatch World::Batch(const std::vector<std::size_t>& indices, LaneCache* cache
 void World::StepLoadedBatch(Share* share) {
   if (share->loaded_batch.empty()) return;
   integrator_->StepLoaded(Batch(share->loaded_batch, &share->lane_cache), options_.dt_s);
-  // FinishStep without the projection: a batched body is full rank.
-  BodyHotColumns& hot = bodies_.hot();
   for (std::size_t k = 0; k < share->loaded_batch.size(); ++k) {
-    const std::size_t index = share->loaded_batch[k];
-    BodyState& state = hot.states[index];
-    const BodyFault fault = CheckState(hot.models[index], state);
-    if (fault != BodyFault::kNone) {
-      state = share->loaded_batch_before[k];
-      Freeze(index, fault, share);
-    }
+    CheckOrRestore(share->loaded_batch[k], share->loaded_batch_before[k], share);
   }
   share->loaded_batch.clear();
   share->loaded_batch_before.clear();
@@ -337,10 +324,14 @@ void World::FinishStep(std::size_t index, const BodyState& before, Share* share)
     state.angular_momentum =
         R_WB * (model.range_projector() * (R_WB.transpose() * state.angular_momentum));
   }
-  const BodyFault fault = CheckState(model, state);
-  if (fault != BodyFault::kNone) {
-    state = before;
-    Freeze(index, fault, share);
+  CheckOrRestore(index, before, share);
+}
+
+void World::StepAlone(std::size_t index, std::uint32_t substeps, const HeldLoads* load) {
+  BodyHotColumns& hot = bodies_.hot();
+  const double h = options_.dt_s / substeps;
+  for (std::uint32_t k = 0; k < substeps; ++k) {
+    integrator_->Step(hot.models[index], load, h, &hot.states[index]);
   }
 }
 

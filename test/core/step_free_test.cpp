@@ -63,6 +63,19 @@ World MakeFreeWorld(const std::string& integrator, double dt_s) {
   return World(std::move(models), std::move(states), options);
 }
 
+// Adds to `load` the force scale·(0.5, −1, 0.25)·(1 + 0.1 i) [N] at particle
+// i mod count of `model`, in body axes or in world axes.
+void AddParticleForce(const BodyModel& model, std::size_t i, double scale, bool body_axes,
+                      HeldLoads* load) {
+  const Eigen::Vector3d& offset = model.particle_offsets()[i % model.particle_count()];
+  const Eigen::Vector3d force = scale * Eigen::Vector3d(0.5, -1.0, 0.25) * (1.0 + 0.1 * i);
+  if (body_axes) {
+    load->AddBodyForce(force, offset);
+  } else {
+    load->AddWorldForce(force, offset);
+  }
+}
+
 // Steps `world` `steps` times and, beside it, a copy of its states body by
 // body through `scheme`'s Step in as many substeps as the World takes;
 // returns the copy.
@@ -301,16 +314,8 @@ TEST_P(EveryScheme, StepLoadedOfADampedBatchIsStepBodyByBody) {
   for (std::size_t i = 0; i < world.size(); ++i) {
     const BodyModel& model = world.model(i);
     if (i % 4 != 3) loads[i].AddCentralForce(model.mass() * Eigen::Vector3d(0.3, -0.2, -9.81));
-    if (i % 4 == 0) {
-      const Eigen::Vector3d& offset = model.particle_offsets()[i % model.particle_count()];
-      const Eigen::Vector3d force = Eigen::Vector3d(0.5, -1.0, 0.25) * (1.0 + 0.1 * i);
-      if (i % 8 == 0) {
-        loads[i].AddBodyForce(force, offset);
-        loads[i].AddBodyCouple({0.02, 0.01, -0.03});
-      } else {
-        loads[i].AddWorldForce(force, offset);
-      }
-    }
+    if (i % 4 == 0) AddParticleForce(model, i, 1.0, i % 8 == 0, &loads[i]);
+    if (i % 8 == 0) loads[i].AddBodyCouple({0.02, 0.01, -0.03});
     const double rates_per_s[5] = {0.0, 0.3, 2.0, 40.0, 200.0};  // 200/s: c·dt = 0.2
     loads[i].SetDamping(rates_per_s[i % 5], rates_per_s[(i + 2) % 5]);
     bodies.push_back(i);
@@ -345,14 +350,7 @@ TEST_P(EveryScheme, StepLoadedOfABodyDoesNotDependOnItsBatch) {
   std::vector<HeldLoads> loads(world.size());
   std::vector<std::size_t> bodies;
   for (std::size_t i = 0; i < world.size(); ++i) {
-    const BodyModel& model = world.model(i);
-    const Eigen::Vector3d& offset = model.particle_offsets()[i % model.particle_count()];
-    const Eigen::Vector3d force = Eigen::Vector3d(0.5, -1.0, 0.25) * (1.0 + 0.1 * i);
-    if (i % 3 == 0) {
-      loads[i].AddBodyForce(force, offset);
-    } else {
-      loads[i].AddWorldForce(force, offset);
-    }
+    AddParticleForce(world.model(i), i, 1.0, i % 3 == 0, &loads[i]);
     if (i % 2 == 0) loads[i].SetDamping(0.3 * i, 0.1 * i);
     bodies.push_back(i);
   }
@@ -439,15 +437,8 @@ TEST_P(EveryScheme, StepLoadedWithALaneCacheIsStepLoadedWithout) {
   std::vector<BodyState> uncached = cached;
   std::vector<HeldLoads> loads(world.size());
   const auto push = [&](std::size_t i, double scale) {
-    const BodyModel& model = world.model(i);
-    const Eigen::Vector3d& offset = model.particle_offsets()[i % model.particle_count()];
-    const Eigen::Vector3d force = scale * Eigen::Vector3d(0.5, -1.0, 0.25) * (1.0 + 0.1 * i);
     loads[i].Clear();
-    if (i % 3 == 0) {
-      loads[i].AddBodyForce(force, offset);
-    } else {
-      loads[i].AddWorldForce(force, offset);
-    }
+    AddParticleForce(world.model(i), i, scale, i % 3 == 0, &loads[i]);
   };
   std::vector<std::size_t> bodies;
   for (std::size_t i = 0; i < world.size(); ++i) {

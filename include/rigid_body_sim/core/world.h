@@ -207,6 +207,18 @@ class World {
   // then the CheckState bounds (a body that breaks one gets `before` back and
   // is frozen).
   void FinishStep(std::size_t index, const BodyState& before, Share* share);
+  // The CheckState bounds alone, for a full-rank body. Inline: it runs for
+  // every loaded body every step.
+  void CheckOrRestore(std::size_t index, const BodyState& before, Share* share) {
+    BodyState& state = bodies_.hot().states[index];
+    const BodyFault fault = CheckState(bodies_.hot().models[index], state);
+    if (fault != BodyFault::kNone) {
+      state = before;
+      Freeze(index, fault, share);
+    }
+  }
+  // `substeps` scalar steps of dt/n of body `index`, without the checks.
+  void StepAlone(std::size_t index, std::uint32_t substeps, const HeldLoads* load);
   void Freeze(std::size_t index, BodyFault fault, Share* share);
   // The checks of a body that would be bodies[index]: names no other body or
   // site has, its properties and its initial state; throws
