@@ -21,9 +21,10 @@ resolution 2: 8 particles each) and measures
      held_wrenches, and the z velocity of the first and last body growing at
      F/m) before the window;
   6. the cost of ~step through the node: ~step 20000 while paused on 1,000
-     tumbling boxes, ns per body-step from a persistent service client, next
-     to throughput_bench's BM_WorldStep/casimir_splitting4/free/1000 on the
-     node's core in the same run.
+     tumbling boxes, free and then pushed as in part 5, ns per body-step from
+     a persistent service client, next to throughput_bench's
+     BM_WorldStep/casimir_splitting4/free/1000 and
+     BM_WorldStepLoaded/world_force/1000 on the node's core in the same run.
 
 Writes a Markdown report (also printed) to bench/results/node_load.md and one
 CSV row per run to bench/results/node_load.csv. Without part flags every part
@@ -659,13 +660,16 @@ def part_latency(diag, quick):
 
 STEP_COST_BODIES = 1000
 STEP_COST_STEPS = 20000
-CORE_STEP_BENCHMARK = "BM_WorldStep/casimir_splitting4/free/1000"
+# The core's counterpart of each node scene: free tumbling boxes, and boxes
+# each pushed by one held world-axes particle force.
+CORE_STEP_BENCHMARKS = {False: "BM_WorldStep/casimir_splitting4/free/1000",
+                        True: "BM_WorldStepLoaded/world_force/1000"}
 
 
-def core_ns_per_body_step(repetitions):
-    """Median ns per body-step of the core's CORE_STEP_BENCHMARK, on the node's core with its scheduling."""
+def core_ns_per_body_step(benchmark, repetitions):
+    """Median ns per body-step of the core's `benchmark`, on the node's core with its scheduling."""
     out = subprocess.run(NODE_PREFIX + ["taskset", "-c", str(ARGS.node_cpu), devel_program(WS, "throughput_bench"),
-                                        "--benchmark_filter=^%s$" % CORE_STEP_BENCHMARK,
+                                        "--benchmark_filter=^%s$" % benchmark,
                                         "--benchmark_repetitions=%d" % repetitions,
                                         "--benchmark_report_aggregates_only=true", "--benchmark_format=json"],
                          stdout=subprocess.PIPE, universal_newlines=True, check=True).stdout
@@ -673,13 +677,15 @@ def core_ns_per_body_step(repetitions):
     return 1e9 * median["per_body_step"]
 
 
-def part_step_cost(diag, quick):
-    """~step STEP_COST_STEPS on the paused node, timed from a persistent client (no per-call connection
-    set-up), and the node's own CPU time over each call; then the core's figure."""
-    repetitions = 3 if quick else 5
+def step_cost_run(diag, pushed, repetitions):
+    """~step STEP_COST_STEPS on the paused node (its bodies free, or each pushed as in part 5), timed from a
+    persistent client (no per-call connection set-up), and the node's own CPU time over each call; then the
+    core's figure for the same kind of bodies."""
+    label = "step cost, pushed" if pushed else "step cost"
     body_steps = float(STEP_COST_BODIES * STEP_COST_STEPS)
     walls, cpus = [], []
-    with NodeRun(diag, make_scene(STEP_COST_BODIES, 1000, 10), "step_cost") as run:
+    with NodeRun(diag, make_scene(STEP_COST_BODIES, 1000, 10), label.replace(", ", "_").replace(" ", "_")) as run:
+        held = push_every_body(run, STEP_COST_BODIES) if pushed else {}
         rospy.ServiceProxy(NS + "/set_paused", SetBool)(True)
         step = rospy.ServiceProxy(NS + "/step", Step, persistent=True)
         step(1000)  # warm-up: caches and first-touch page faults
@@ -693,17 +699,25 @@ def part_step_cost(diag, quick):
             cpus.append(1e9 * (ticks1 - ticks0) / CLK_TCK / body_steps)
         step.close()
         startup_s, integrator = run.startup_s, run.first[1].get("integrator", "")
-    core = core_ns_per_body_step(repetitions)
+    benchmark = CORE_STEP_BENCHMARKS[pushed]
+    core = core_ns_per_body_step(benchmark, repetitions)
     node = statistics.median(walls)
     r = {"ns_per_body_step": node, "cpu_ns_per_body_step": statistics.median(cpus), "core_ns_per_body_step": core,
          "node_to_core": node / core, "trials": repetitions, "loadavg1": os.getloadavg()[0],
          "startup_s": startup_s, "integrator": integrator}
-    log("~step %d on %d bodies: node %.1f ns per body-step (its CPU %.1f; each call %s), core %s %.1f -> %.2fx, "
-        "load %.2f" % (STEP_COST_STEPS, STEP_COST_BODIES, node, r["cpu_ns_per_body_step"],
-                       ", ".join("%.1f" % w for w in walls), CORE_STEP_BENCHMARK, core, r["node_to_core"],
-                       r["loadavg1"]))
-    return record(part=6, label="step cost", n_bodies=STEP_COST_BODIES, rate_hz=1000, publish_rate_hz=10,
-                  subscribers="none", passed=r["node_to_core"] <= 1.2, **r)
+    r.update(held)
+    log("%s: ~step %d on %d bodies: node %.1f ns per body-step (its CPU %.1f; each call %s), core %s %.1f -> %.2fx, "
+        "load %.2f" % (label, STEP_COST_STEPS, STEP_COST_BODIES, node, r["cpu_ns_per_body_step"],
+                       ", ".join("%.1f" % w for w in walls), benchmark, core, r["node_to_core"], r["loadavg1"]))
+    return record(part=6, label=label, n_bodies=STEP_COST_BODIES, rate_hz=1000, publish_rate_hz=10,
+                  subscribers="none", passed=r["node_to_core"] <= 1.2, note=benchmark, **r)
+
+
+def part_step_cost(diag, quick):
+    """step_cost_run on free bodies, then on pushed ones: the node against the core for each, and pushed
+    against free through the node and in the core."""
+    repetitions = 3 if quick else 5
+    return [step_cost_run(diag, pushed, repetitions) for pushed in (False, True)]
 
 
 # ------------------------------------------------------------------ report
@@ -788,11 +802,16 @@ def write_report(results, quick, elapsed):
                         "%.2f ms (1/publish_rate = %.1f ms)" % (r["latency_median_ms"], 1e3 / r["publish_rate_hz"])))
     if pushed:
         summary += capacity_summary("pushed bodies (one held particle force each)", pushed)
-    if step_cost:
-        summary.append(("~step %d while paused, %d bodies: node / core ns per body-step"
-                        % (STEP_COST_STEPS, STEP_COST_BODIES),
-                        "%.1f / %.1f (%.2fx)" % (step_cost["ns_per_body_step"], step_cost["core_ns_per_body_step"],
-                                                 step_cost["node_to_core"])))
+    for r in step_cost or []:
+        summary.append(("~step %d while paused, %d %s bodies: node / core ns per body-step"
+                        % (STEP_COST_STEPS, STEP_COST_BODIES, "pushed" if "pushed" in r["label"] else "free"),
+                        "%.1f / %.1f (%.2fx)" % (r["ns_per_body_step"], r["core_ns_per_body_step"],
+                                                 r["node_to_core"])))
+    if step_cost and len(step_cost) == 2:
+        free, pushed_cost = step_cost
+        summary.append(("~step, pushed / free ns per body-step: node, core",
+                        "%.2fx, %.2fx" % (pushed_cost["ns_per_body_step"] / free["ns_per_body_step"],
+                                          pushed_cost["core_ns_per_body_step"] / free["core_ns_per_body_step"])))
     md.append(md_table(["figure", "value"], summary))
     md.append("")
 
@@ -883,23 +902,25 @@ def write_report(results, quick, elapsed):
         md.append("")
 
     if step_cost:
-        r = step_cost
         md.append("## 6. ~step through the node against the core's World::Step")
         md.append("")
-        md.append("The node paused on %d tumbling boxes (the part 1 scene), ~step %d called %d times from one "
-                  "persistent rospy service client after a warm-up ~step 1000; ns per body-step = wall time of "
-                  "the call / (bodies x steps), median over the calls; node CPU = the node's utime + stime "
-                  "over each call (10 ms ticks). Core: `throughput_bench --benchmark_filter=^%s$` on the "
-                  "node's core with its scheduling right after, median of %d repetitions. A `rosservice call` "
-                  "timed from the shell would add the command's own start-up (0.7-1.2 s on this machine, "
-                  "35-60 ns per body-step at this size)."
-                  % (STEP_COST_BODIES, STEP_COST_STEPS, r["trials"], CORE_STEP_BENCHMARK, r["trials"]))
+        md.append("The node paused on %d tumbling boxes (the part 1 scene), free, then in a second run each pushed "
+                  "as in part 5; ~step %d called %d times from one persistent rospy service client after a "
+                  "warm-up ~step 1000; ns per body-step = wall time of the call / (bodies x steps), median over "
+                  "the calls; node CPU = the node's utime + stime over each call (10 ms ticks). Core: "
+                  "`throughput_bench --benchmark_filter=^<benchmark>$` on the node's core with its scheduling "
+                  "right after each run, median of as many repetitions: %s for free boxes, %s for boxes with one "
+                  "held world-axes particle force each. A `rosservice call` timed from the shell would add the "
+                  "command's own start-up (0.7-1.2 s on this machine, 35-60 ns per body-step at this size)."
+                  % (STEP_COST_BODIES, STEP_COST_STEPS, step_cost[0]["trials"], CORE_STEP_BENCHMARKS[False],
+                     CORE_STEP_BENCHMARKS[True]))
         md.append("")
         md.append(md_table(
-            ["bodies", "steps per call", "calls", "node ns per body-step", "node CPU ns per body-step",
+            ["bodies", "kind", "steps per call", "calls", "node ns per body-step", "node CPU ns per body-step",
              "core ns per body-step", "node / core", "load avg"],
-            [[r["n_bodies"], STEP_COST_STEPS, r["trials"], r["ns_per_body_step"], r["cpu_ns_per_body_step"],
-              r["core_ns_per_body_step"], "%.2f" % r["node_to_core"], "%.2f" % r["loadavg1"]]]))
+            [[r["n_bodies"], "pushed" if "pushed" in r["label"] else "free", STEP_COST_STEPS, r["trials"],
+              r["ns_per_body_step"], r["cpu_ns_per_body_step"], r["core_ns_per_body_step"],
+              "%.2f" % r["node_to_core"], "%.2f" % r["loadavg1"]] for r in step_cost]))
         md.append("")
     return "\n".join(md)
 
