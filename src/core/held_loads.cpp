@@ -113,6 +113,8 @@ const HeldLoads::PrincipalParts& HeldLoads::NewPrincipalParts(
 }
 
 double HeldLoads::TurnRate(const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& omega) const {
+  // World forces at the COM and world couples do not turn with the body.
+  if (!has_body_axes_ && force_moment_.isZero(0.0)) return 0.0;
   double rate = 0.0;
   const double force_bound = force_world_.norm() + force_body_.norm();
   if (force_bound > 0.0) rate = omega.cross(R_WB * force_body_).norm() / force_bound;
