@@ -129,6 +129,24 @@ BENCHMARK_CAPTURE(BM_WorldStepLargeSteps, casimir_splitting4, "casimir_splitting
 BENCHMARK_CAPTURE(BM_WorldStepLargeSteps, casimir_rkn4, "casimir_rkn4")->Arg(1000);
 BENCHMARK_CAPTURE(BM_WorldStepLargeSteps, casimir_rkn6, "casimir_rkn6")->Arg(1000);
 
+// The same tops, each under a held world couple of 1 mN m, which does not
+// turn with the body: still one step each, through the loaded lanes with
+// SinCosWide.
+void BM_WorldStepLargeStepsCoupled(benchmark::State& state) {
+  const int bodies = static_cast<int>(state.range(0));
+  World world = MakeLargeStepWorld(kDefaultIntegrator, bodies, {0.2, 0.2, 0.4});
+  for (int i = 0; i < bodies; ++i) {
+    BodyWrench couple;
+    couple.body = world.id(i);
+    couple.couple = {1e-3, -5e-4, 2e-4};
+    world.HoldBodyWrench(couple);
+  }
+  TimeSteps(&world, &state);
+  ReportPerBodyStep(bodies, &state);
+  state.counters["substeps"] = world.last_step_substeps_max();
+}
+BENCHMARK(BM_WorldStepLargeStepsCoupled)->Arg(1000);
+
 // The same at dt = 0.1 s for the asymmetric box (0.2 × 0.3 × 0.4 m), whose
 // step the schemes' own error splits into n substeps of dt/n: bodies with
 // equal n are batched and take the lanes n times. The counter is per

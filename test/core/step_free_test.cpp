@@ -181,24 +181,29 @@ World WideLanesWorld(const std::string& scheme, const std::vector<BodyModel>& mo
   return world;
 }
 
+// Body i of the large-step tests: a symmetric top (λ = 1, 1, 2 kg m², odd
+// i) or a sphere (1.5 kg m²), tilted, with |L| growing with i from 0.8 to
+// 5 kg m²/s.
+void AddTopOrSphere(std::size_t i, std::vector<BodyModel>* models, std::vector<BodyState>* states) {
+  const Eigen::Vector3d moments =
+      i % 2 ? Eigen::Vector3d(1.0, 1.0, 2.0) : Eigen::Vector3d(1.5, 1.5, 1.5);
+  models->push_back(
+      test::DiagonalBody(moments, Eigen::Vector3d::Zero(), "body" + std::to_string(i)));
+  BodyState state;
+  state.orientation = Eigen::Quaterniond(
+      Eigen::AngleAxisd(0.4 + 0.1 * i, Eigen::Vector3d(1, -2, 0.5 + 0.1 * i).normalized()));
+  state.angular_momentum = Eigen::Vector3d(0.7, -1.1, 2.3) * (0.3 + 0.1 * i);
+  state.linear_momentum = {0.1 * i, 0.2, -0.3};
+  states->push_back(state);
+}
+
 TEST(FreeLanes, TopsAndSpheresAreExactAtLargeSteps) {
   // The Casimir compositions are exact for symmetric tops and spheres
   // (integrators_test), so the World's wide lanes must follow the closed
   // form to round-off at 0.25 s steps turning 0.1 to 1.2 rad each.
   std::vector<BodyModel> models;
   std::vector<BodyState> states;
-  for (int i = 0; i < 16; ++i) {
-    const Eigen::Vector3d moments =
-        i % 2 ? Eigen::Vector3d(1.0, 1.0, 2.0) : Eigen::Vector3d(1.5, 1.5, 1.5);
-    models.push_back(
-        test::DiagonalBody(moments, Eigen::Vector3d::Zero(), "body" + std::to_string(i)));
-    BodyState state;
-    state.orientation = Eigen::Quaterniond(
-        Eigen::AngleAxisd(0.4 + 0.1 * i, Eigen::Vector3d(1, -2, 0.5 + 0.1 * i).normalized()));
-    state.angular_momentum = Eigen::Vector3d(0.7, -1.1, 2.3) * (0.3 + 0.1 * i);
-    state.linear_momentum = {0.1 * i, 0.2, -0.3};
-    states.push_back(state);
-  }
+  for (std::size_t i = 0; i < 16; ++i) AddTopOrSphere(i, &models, &states);
   const std::vector<BodyState> initial = states;
   for (const char* name : {"casimir_splitting4", "casimir_rkn4", "casimir_rkn6"}) {
     World world = WideLanesWorld(name, models, states);
@@ -248,6 +253,57 @@ TEST(FreeLanes, NearlySymmetricBodiesAtLargeStepsAreStepBodyByBody) {
                 steps * turn_bound * max_angle);
       EXPECT_LT((world.state(i).position - expected[i].position).norm(), 1e-16 * steps * 10);
     }
+  }
+}
+
+TEST(LoadedLanes, TopsAndSpheresUnderCouplesAtLargeStepsAreStepBodyByBody) {
+  // Symmetric tops and spheres under world couples and COM forces, some
+  // damped, some with a body couple: loads whose turn rate is zero, so the
+  // World gives them one step of 0.25 s, turning 0.2 to 1.5 rad, past the
+  // series: the loaded lanes with SinCosWide (three blocks, the last partly
+  // filled). StepLoaded against Step body by body, within the round-off
+  // bound of the wide free lanes' test for the twelve turns of a step.
+  const double dt = 0.25;
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states;
+  std::vector<HeldLoads> loads(19);
+  std::vector<std::size_t> bodies;
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    AddTopOrSphere(i, &models, &states);
+    loads[i].AddWorldCouple(Eigen::Vector3d(0.05, -0.02, 0.03) * (1.0 + 0.1 * i));
+    loads[i].AddCentralForce({0.1, 0.0, -0.2 * i});
+    if (i % 4 == 3) loads[i].SetDamping(0.1, 0.2);  // c·dt = 0.05 <= 1/16
+    if (i % 8 == 5) loads[i].AddBodyCouple({0.0, 0.0, 0.01});
+    bodies.push_back(i);
+  }
+  const World world(models, states, WorldOptions{});
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    SCOPED_TRACE("body " + std::to_string(i));
+    ASSERT_FALSE(FitsLoadedLanes(models[i], states[i], loads[i], dt));
+    ASSERT_TRUE(FitsLoadedWideLanes(models[i], states[i], loads[i], dt));
+  }
+  const std::unique_ptr<Integrator> integrator = MakeIntegrator(kDefaultIntegrator);
+  std::vector<BodyState> expected = states;
+  std::vector<double> momentum_max(loads.size(), 0.0);
+  const int steps = 200;
+  for (int n = 0; n < steps; ++n) {
+    integrator->StepLoaded(Batch(world, loads, bodies, &states), dt);
+    for (std::size_t i = 0; i < loads.size(); ++i) {
+      integrator->Step(models[i], &loads[i], dt, &expected[i]);
+      momentum_max[i] = std::max(momentum_max[i], expected[i].angular_momentum.norm());
+    }
+  }
+  const double turn_bound = 12 * 4 * std::numeric_limits<double>::epsilon();
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    SCOPED_TRACE("body " + std::to_string(i));
+    const double max_angle = TurnPerMomentum(models[i], dt) * momentum_max[i];
+    EXPECT_LT(test::AngleBetween(states[i].orientation, expected[i].orientation),
+              steps * turn_bound * max_angle);
+    EXPECT_LT((states[i].angular_momentum - expected[i].angular_momentum).norm(),
+              steps * turn_bound * max_angle * momentum_max[i]);
+    // x reaches ~1e3 m under the COM forces: round-off relative to it.
+    EXPECT_LT((states[i].position - expected[i].position).norm(),
+              1e-16 * steps * 10 * std::max(1.0, expected[i].position.norm()));
   }
 }
 

@@ -20,9 +20,9 @@ struct LoadedLanes;
 
 class LaneCache {
  public:
-  // The loaded lanes' groups (casimir_loaded_lanes.h): damped or not, with a
-  // body-axes part or not.
-  static constexpr std::size_t kLoadedGroups = 4;
+  // The loaded lanes' groups (casimir_loaded_lanes.h): by the series or wide
+  // angles, damped or not, with a body-axes part or not.
+  static constexpr std::size_t kLoadedGroups = 8;
   // Blocks kept per group: 1,024 bodies, a few hundred kB.
   static constexpr std::size_t kKeptBlocks = 128;
 

@@ -3,7 +3,7 @@
 // the SIMD lanes where the scheme has them and the body fits), in n substeps
 // of dt/n, or not at all (frozen). World::Step classifies each body with
 // PlanStep; the lane kernels ask FitsFreeLanes / FitsFreeWideLanes /
-// FitsLoadedLanes.
+// FitsLoadedLanes / FitsLoadedWideLanes.
 #pragma once
 
 #include <algorithm>
@@ -87,6 +87,14 @@ inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, cons
                             double dt_s) {
   return TurnWithin(TurnPerMomentum(model, dt_s, kLanesLongestSubstep),
                     MomentumReachSq(state, &load, dt_s), kSeriesMaxAngle);
+}
+
+// Whether a loaded body that does not fit the series may take the loaded
+// lanes with SinCosWide: the same half-angles within kWideMaxAngle.
+inline bool FitsLoadedWideLanes(const BodyModel& model, const BodyState& state,
+                                const HeldLoads& load, double dt_s) {
+  return TurnWithin(TurnPerMomentum(model, dt_s, kLanesLongestSubstep),
+                    MomentumReachSq(state, &load, dt_s), kWideMaxAngle);
 }
 
 // Whether a damped body may take the loaded lanes: c·dt <= kLanesMaxDecay for

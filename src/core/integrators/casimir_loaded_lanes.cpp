@@ -1,6 +1,7 @@
 #include "casimir_loaded_lanes.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "step_parts.h"
 
@@ -18,6 +19,7 @@ LoadedLanes& LaneCache::NextLoadedBlock(std::size_t group) {
   return *blocks[next];
 }
 
+using lanes::Angles;
 using lanes::ExpMapSmall;
 using lanes::Quaternion;
 
@@ -75,15 +77,17 @@ namespace {
 // (without, their terms are left out). kDamped: whether any lane is damped;
 // `decays` then holds each lane's DecayOver for the outer and the inner
 // sub-step, which the drift and the rotation apply as DampedDrift and
-// DampedCasimirRotation do. q stays a unit quaternion to ~1e-16 through the
-// products, so it is normalised once, at the end.
+// DampedCasimirRotation do. kAngles: the series, or SinCosWide for the axis
+// flows and the rotation about L (whose angle then needs |L| after each
+// kick). q stays a unit quaternion to ~1e-16 through the products, so it is
+// normalised once, at the end.
 struct LaneDecays {
   // [sub-step: outer, inner][lane]
   double linear_factor[2][kLanes], linear_elapsed_s[2][kLanes];
   double angular_factor[2][kLanes], angular_elapsed_s[2][kLanes];
 };
 
-template <bool kBodyAxes, bool kDamped>
+template <bool kBodyAxes, bool kDamped, Angles kAngles>
 inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecays& decays,
                                                        LoadedLanes* lanes) {
   LoadedLanes& b = *lanes;
@@ -146,11 +150,21 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
       for (int k = 0; k < 3; ++k) x[k] += drift_s * inverse_mass * p[k];
       double m[3];  // Π = R_WPᵀ L
       lanes::RotateInverse(q, L_W[0], L_W[1], L_W[2], m);
-      Axis1Flow(a1, 0.5 * spin_s, m, &q);
-      Axis3Flow(a3, spin_s, m, &q);
-      Axis1Flow(a1, 0.5 * spin_s, m, &q);
+      lanes::Axis1Flow<kAngles>(a1, 0.5 * spin_s, m, &q);
+      lanes::Axis3Flow<kAngles>(a3, spin_s, m, &q);
+      lanes::Axis1Flow<kAngles>(a1, 0.5 * spin_s, m, &q);
       const double turn = spin_s * casimir;
-      q = Multiply(ExpMapSmall(turn * L_W[0], turn * L_W[1], turn * L_W[2]), q);
+      if constexpr (kAngles == Angles::kSeries) {
+        q = Multiply(ExpMapSmall(turn * L_W[0], turn * L_W[1], turn * L_W[2]), q);
+      } else {
+        // A square root that vectorises: this file is built without errno
+        // from math functions (CMakeLists.txt).
+        const double momentum_norm = std::sqrt(L_W[0] * L_W[0] + L_W[1] * L_W[1] + L_W[2] * L_W[2]);
+        Quaternion about_momentum =
+            lanes::ExpMapWideIncrement(turn, momentum_norm, L_W[0], L_W[1], L_W[2]);
+        about_momentum.w += 1.0;
+        q = Multiply(about_momentum, q);
+      }
       if constexpr (kDamped) {
         for (int k = 0; k < 3; ++k) {
           p[k] *= decays.linear_factor[substep_kind[s]][l];
@@ -173,12 +187,12 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
   }
 }
 
-}  // namespace
-
-RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
+// The kernel instance for the lanes' flags, with the damping's exponentials
+// taken outside the lane loop, which then stays free of calls.
+template <Angles kAngles>
+inline __attribute__((always_inline)) void LoadedStep4For(double h, LoadedLanes* lanes) {
   LaneDecays decays;
   if (lanes->damped) {
-    // The exponentials outside the lane loop, which then stays free of calls.
     const double substeps[2] = {kYoshidaOuterWeight * h, kYoshidaInnerWeight * h};
     for (int s = 0; s < 2; ++s) {
       for (std::size_t l = 0; l < kLanes; ++l) {
@@ -191,17 +205,27 @@ RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
       }
     }
     if (lanes->body_axes) {
-      LoadedStep4<true, true>(h, decays, lanes);
+      LoadedStep4<true, true, kAngles>(h, decays, lanes);
     } else {
-      LoadedStep4<false, true>(h, decays, lanes);
+      LoadedStep4<false, true, kAngles>(h, decays, lanes);
     }
   } else if (lanes->body_axes) {
-    LoadedStep4<true, false>(h, decays, lanes);
+    LoadedStep4<true, false, kAngles>(h, decays, lanes);
   } else {
-    LoadedStep4<false, false>(h, decays, lanes);
+    LoadedStep4<false, false, kAngles>(h, decays, lanes);
   }
   lanes->body_axes = false;
   lanes->damped = false;
+}
+
+}  // namespace
+
+RBS_SIMD_CLONES void CasimirLoadedStep4(double h, LoadedLanes* lanes) {
+  LoadedStep4For<Angles::kSeries>(h, lanes);
+}
+
+RBS_SIMD_CLONES void CasimirLoadedWideStep4(double h, LoadedLanes* lanes) {
+  LoadedStep4For<Angles::kWide>(h, lanes);
 }
 
 }  // namespace rigid_body_sim::core

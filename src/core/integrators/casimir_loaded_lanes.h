@@ -51,20 +51,28 @@ struct LoadedLanes : LaneBodies {
 // Advances every lane by h; the bodies in use must fit (FitsLoadedLanes,
 // DampingFitsLoadedLanes). Clears body_axes and damped.
 void CasimirLoadedStep4(double h, LoadedLanes* lanes);
+// The same with SinCosWide, for bodies that fit FitsLoadedWideLanes alone.
+void CasimirLoadedWideStep4(double h, LoadedLanes* lanes);
+
+// A scheme's loaded lane kernels, one per range of step angles.
+struct LoadedLaneKernels {
+  void (*series)(double h, LoadedLanes* lanes);  // bodies that fit FitsLoadedLanes
+  void (*wide)(double h, LoadedLanes* lanes);    // the others that fit FitsLoadedWideLanes
+};
 
 // Integrator::StepLoaded through the lanes. A body whose load is a constant
 // world force F at the COM (gravity alone) and no damping turns as a free
 // body while its COM moves exactly as x += h p/M + h² F/(2M), p += h F,
-// which is what every scheme exact for constant forces gives: it takes
-// the free lanes of its angles (`free_lanes`) and then the rest of that motion; a damped body
-// is loaded however small its wrench, which keeps damping out of the free
-// lanes. Other bodies that fit take
-// `loaded_lanes(dt_s, lanes)` (nullptr: a scheme without them), the rest
+// which is what every scheme exact for constant forces gives: it takes the
+// free lanes of its angles (`free_lanes`) and then the rest of that motion;
+// a damped body is loaded however small its wrench, which keeps damping out
+// of the free lanes. Other bodies that fit take the `loaded_lanes` kernel of
+// their angles (nullptr: a scheme without them), the rest
 // `step_one(model, load, dt_s, state)`. The blocks of loaded lanes come from
 // batch.lane_cache (or, without one, from a cache of this call alone).
 template <typename LoadedKernel, typename StepOne>
 void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels& free_lanes,
-                       LoadedKernel loaded_lanes, StepOne step_one) {
+                       const LoadedKernel& loaded_lanes, StepOne step_one) {
   constexpr bool kHasLoadedLanes = !std::is_same_v<LoadedKernel, std::nullptr_t>;
   FreeLaneQueues pulled(free_lanes);  // bodies under a constant force
   const auto flush_pulled = [&](FreeLaneQueue& queue) {
@@ -76,13 +84,15 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
       state.linear_momentum += impulse;
     });
   };
-  // Bodies under a load that depends on the orientation, in four groups by
-  // whether they are damped and hold a body-axes part: the kernel instance a
-  // group runs then is the one each of its bodies calls for, so that a body's
+  // Bodies under a load that depends on the orientation, in groups by their
+  // angles (the series or wide), whether they are damped and whether they
+  // hold a body-axes part: the kernel instance a group runs then is the one
+  // each of its bodies calls for, so that a body's
   // result does not depend on which bodies share its lanes (a damped
   // instance rounds an undamped lane's kick differently), and so not on the
   // batches or threads of the World.
   constexpr std::size_t kGroups = LaneCache::kLoadedGroups;
+  constexpr std::size_t kWideGroups = kGroups / 2;  // the first group of wide angles
   LaneCache call_cache;
   LaneCache& cache = batch.lane_cache != nullptr ? *batch.lane_cache : call_cache;
   LoadedLanes* turned[kGroups] = {};  // each group's block being filled
@@ -93,7 +103,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
       LoadedLanes& lanes = *turned[group];
       const std::size_t count = turned_count[group];
       if (count < kLanes) lanes.FillIdle(count);
-      loaded_lanes(dt_s, &lanes);
+      (group < kWideGroups ? loaded_lanes.series : loaded_lanes.wide)(dt_s, &lanes);
       for (std::size_t l = 0; l < count; ++l)
         lanes.Store(l, &batch.states[turned_bodies[group][l]]);
     }
@@ -108,9 +118,11 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     FreeLaneQueue* queue = load.has_torque() || damped ? nullptr : pulled.For(model, state, dt_s);
     if (queue != nullptr) {
       if (queue->Add(body, model, state)) flush_pulled(*queue);
-    } else if (kHasLoadedLanes && FitsLoadedLanes(model, state, load, dt_s) &&
+    } else if (const bool series = FitsLoadedLanes(model, state, load, dt_s);
+               kHasLoadedLanes && (series || FitsLoadedWideLanes(model, state, load, dt_s)) &&
                (!damped || DampingFitsLoadedLanes(load.damping(), dt_s))) {
-      const std::size_t group = (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
+      const std::size_t group =
+          (series ? 0 : kWideGroups) + (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
       if (turned[group] == nullptr) turned[group] = &cache.NextLoadedBlock(group);
       turned[group]->Load(turned_count[group], model, state, load);
       turned_bodies[group][turned_count[group]++] = body;

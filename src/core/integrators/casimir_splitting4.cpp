@@ -24,6 +24,7 @@ RBS_SIMD_CLONES void CasimirSplitting4FreeWideLanes(double h, FreeLanes* lanes) 
 }
 namespace {
 constexpr FreeLaneKernels kFreeLanes = {CasimirSplitting4FreeLanes, CasimirSplitting4FreeWideLanes};
+constexpr LoadedLaneKernels kLoadedLanes = {CasimirLoadedStep4, CasimirLoadedWideStep4};
 }  // namespace
 
 void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load, double dt_s,
@@ -73,7 +74,7 @@ void CasimirSplitting4Integrator::StepFree(const BodyBatch& batch, double dt_s) 
 }
 
 void CasimirSplitting4Integrator::StepLoaded(const BodyBatch& batch, double dt_s) const {
-  StepLoadedInLanes(batch, dt_s, kFreeLanes, CasimirLoadedStep4,
+  StepLoadedInLanes(batch, dt_s, kFreeLanes, kLoadedLanes,
                     [this](const BodyModel& model, const HeldLoads& load, double h,
                            BodyState* state) { Step(model, &load, h, state); });
 }

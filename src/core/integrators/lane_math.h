@@ -1,5 +1,8 @@
 // Plain-number pieces of the SIMD lane kernels (casimir_free_lanes,
-// casimir_loaded_lanes): no branch and no call, so loops over lanes vectorise.
+// casimir_loaded_lanes): no branch and no call, so loops over lanes
+// vectorise. The larger pieces are always_inline: a kernel that calls
+// SinCosWide a dozen times is past the compiler's own inlining budget, and
+// one call left in the loop stops it vectorising.
 #pragma once
 
 #include "rigid_body_sim/core/integrators/free_rotation.h"
@@ -47,26 +50,14 @@ inline Quaternion ExpMapSmall(double theta_x, double theta_y, double theta_z) {
   return q;
 }
 
-// H_1 and H_3 flows of AxisFlow<0> and AxisFlow<2> on plain numbers.
-inline void Axis1Flow(double coefficient, double h, double* m, Quaternion* q) {
-  double s, c;
-  SinCosSmall(0.5 * h * coefficient * m[0], &s, &c);
-  AxisTurn(s, c, &m[1], &m[2], &q->w, &q->y, &q->z, &q->x);
-}
-
-inline void Axis3Flow(double coefficient, double h, double* m, Quaternion* q) {
-  double s, c;
-  SinCosSmall(0.5 * h * coefficient * m[2], &s, &c);
-  AxisTurn(s, c, &m[0], &m[1], &q->w, &q->x, &q->y, &q->z);
-}
-
 // The step angles a lane kernel takes: up to kSeriesMaxAngle by the series
 // (FitsFreeLanes), or up to kWideMaxAngle by SinCosWide (FitsFreeWideLanes),
 // which costs about twice as much.
 enum class Angles { kSeries, kWide };
 
 template <Angles angles>
-inline void SinCosMinusOneOf(double x, double* sin_x, double* cos_x_minus_one) {
+inline __attribute__((always_inline)) void SinCosMinusOneOf(double x, double* sin_x,
+                                                            double* cos_x_minus_one) {
   if constexpr (angles == Angles::kSeries) {
     SinCosMinusOneSmall(x, sin_x, cos_x_minus_one);
   } else {
@@ -74,6 +65,23 @@ inline void SinCosMinusOneOf(double x, double* sin_x, double* cos_x_minus_one) {
     *sin_x = values.sin;
     *cos_x_minus_one = values.cos_minus_one;
   }
+}
+
+// H_1 and H_3 flows of AxisFlow<0> and AxisFlow<2> on plain numbers.
+template <Angles angles = Angles::kSeries>
+inline __attribute__((always_inline)) void Axis1Flow(double coefficient, double h, double* m,
+                                                     Quaternion* q) {
+  double s, c_minus_one;
+  SinCosMinusOneOf<angles>(0.5 * h * coefficient * m[0], &s, &c_minus_one);
+  AxisTurn(s, 1.0 + c_minus_one, &m[1], &m[2], &q->w, &q->y, &q->z, &q->x);
+}
+
+template <Angles angles = Angles::kSeries>
+inline __attribute__((always_inline)) void Axis3Flow(double coefficient, double h, double* m,
+                                                     Quaternion* q) {
+  double s, c_minus_one;
+  SinCosMinusOneOf<angles>(0.5 * h * coefficient * m[2], &s, &c_minus_one);
+  AxisTurn(s, 1.0 + c_minus_one, &m[0], &m[1], &q->w, &q->x, &q->y, &q->z);
 }
 
 // The same composing onto a rotation increment `turn` (w − 1, x, y, z).
@@ -95,8 +103,10 @@ inline void Axis3FlowIncrement(double coefficient, double h, double* m, Quaterni
 // square root in the lanes' loop would keep it from vectorising): the series
 // where |θ| <= kSeriesMaxAngle, else from SinCosWide of |θ|/2 (|θ| up to
 // 2 kWideMaxAngle).
-inline Quaternion ExpMapWideIncrement(double angle_per_momentum, double momentum_norm, double lx,
-                                      double ly, double lz) {
+inline __attribute__((always_inline)) Quaternion ExpMapWideIncrement(double angle_per_momentum,
+                                                                     double momentum_norm,
+                                                                     double lx, double ly,
+                                                                     double lz) {
   const double tx = angle_per_momentum * lx, ty = angle_per_momentum * ly,
                tz = angle_per_momentum * lz;
   const Quaternion series = ExpMapSmallIncrement(tx, ty, tz);
@@ -145,7 +155,7 @@ inline Quaternion Normalized(const Quaternion& q) {
 }
 
 // The rotation matrix of a unit q, row-major.
-inline void RotationMatrix(const Quaternion& q, double a[9]) {
+inline __attribute__((always_inline)) void RotationMatrix(const Quaternion& q, double a[9]) {
   const double xx = q.x * q.x, yy = q.y * q.y, zz = q.z * q.z;
   const double xy = q.x * q.y, xz = q.x * q.z, yz = q.y * q.z;
   const double wx = q.w * q.x, wy = q.w * q.y, wz = q.w * q.z;

@@ -61,7 +61,7 @@ struct SinCosValues {
 // |n| < 2^20 and r is found to the round-off of its last subtraction.
 // Where n ≡ 0 (mod 4), cos x − 1 is the series' own; elsewhere cos x is
 // at most cos(π/4) and cos x − 1 loses nothing.
-inline SinCosValues SinCosWide(double x) {
+inline __attribute__((always_inline)) SinCosValues SinCosWide(double x) {
   namespace d = sin_cos_detail;
   constexpr double kTwoOverPi = 0x1.45f306dc9c883p-1;
   constexpr double kHalfPiHigh = 0x1.921fb544p+0;
