@@ -33,8 +33,17 @@ constexpr double kLanesMaxDecay = 1.0 / 16;
 // Every rate SubstepsFor weighs is at most this times |L|·max_k(1/λ_k) (the
 // Casimir rate ∛(αβ(α + β)) <= ∛2·max(α, β)).
 inline const double kRateBoundFactor = std::cbrt(2.0);
-// The longest sub-step of the loaded lanes' composition, in units of dt.
-constexpr double kLanesLongestSubstep = 1.36;
+// What a loaded lane kernel's step reaches, in units of dt: the longest
+// turn of its flows per |L| max_k(1/λ_k), and the most kick weight (sum of
+// |w|) applied before any of them.
+struct LoadedLanesReach {
+  double longest_flow;
+  double kick_sum;
+};
+// The default scheme's triple jump: its sub-steps turn by at most 0.85 dt
+// in an axis flow's half-angle, 1.36 leaves room for the damping's stretch
+// and the kicks' growth of L within the step (DampingFitsLoadedLanes).
+inline constexpr LoadedLanesReach kTripleJumpReach = {1.36, 1.0};
 
 // The turn [rad] per unit |L| [kg m²/s] that no flow of a step of dt_s
 // exceeds, times `factor`: factor·dt·max_k(1/λ_k). A null moment's inverse
@@ -43,12 +52,14 @@ inline double TurnPerMomentum(const BodyModel& model, double dt_s, double factor
   return factor * dt_s * model.inverse_principal_moments().maxCoeff();
 }
 
-// A bound on |L|² over a step of dt_s: |L|² for a free body; under a load,
-// (|L| + dt τ_max)² <= 2 |L|² + 2 (dt τ_max)², which spares the root.
-inline double MomentumReachSq(const BodyState& state, const HeldLoads* load, double dt_s) {
+// A bound on |L|² over a step of dt_s whose kicks sum to kick_sum·dt: |L|²
+// for a free body; under a load, (|L| + kick_sum dt τ_max)² <=
+// 2 |L|² + 2 (kick_sum dt τ_max)², which spares the root.
+inline double MomentumReachSq(const BodyState& state, const HeldLoads* load, double dt_s,
+                              double kick_sum = 1.0) {
   const double momentum_sq = state.angular_momentum.squaredNorm();
   if (load == nullptr) return momentum_sq;
-  const double kick = dt_s * load->TorqueBound();
+  const double kick = kick_sum * dt_s * load->TorqueBound();
   return 2.0 * (momentum_sq + kick * kick);
 }
 
@@ -81,27 +92,29 @@ inline bool FitsFreeWideLanes(const BodyModel& model, const BodyState& state, do
                     kWideMaxAngle);
 }
 
-// Whether a loaded body may take the loaded lanes: every half-angle of its
-// step, with L grown by the kick, within the series' range.
+// Whether a loaded body may take the loaded lanes of a kernel that reaches
+// `reach`: every turn of its step, with L grown by the kicks, within the
+// series' range.
 inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, const HeldLoads& load,
-                            double dt_s) {
-  return TurnWithin(TurnPerMomentum(model, dt_s, kLanesLongestSubstep),
-                    MomentumReachSq(state, &load, dt_s), kSeriesMaxAngle);
+                            double dt_s, const LoadedLanesReach& reach = kTripleJumpReach) {
+  return TurnWithin(TurnPerMomentum(model, dt_s, reach.longest_flow),
+                    MomentumReachSq(state, &load, dt_s, reach.kick_sum), kSeriesMaxAngle);
 }
 
 // Whether a loaded body that does not fit the series may take the loaded
-// lanes with SinCosWide: the same half-angles within kWideMaxAngle.
+// lanes with SinCosWide: the same turns within kWideMaxAngle.
 inline bool FitsLoadedWideLanes(const BodyModel& model, const BodyState& state,
-                                const HeldLoads& load, double dt_s) {
-  return TurnWithin(TurnPerMomentum(model, dt_s, kLanesLongestSubstep),
-                    MomentumReachSq(state, &load, dt_s), kWideMaxAngle);
+                                const HeldLoads& load, double dt_s,
+                                const LoadedLanesReach& reach = kTripleJumpReach) {
+  return TurnWithin(TurnPerMomentum(model, dt_s, reach.longest_flow),
+                    MomentumReachSq(state, &load, dt_s, reach.kick_sum), kWideMaxAngle);
 }
 
 // Whether a damped body may take the loaded lanes: c·dt <= kLanesMaxDecay for
 // both rates. The backward inner sub-step then lengthens the rescaled time of
 // its rotation by at most e^{1.71/16} < 1.12 and the kicks' growth by less,
-// well within FitsLoadedLanes' margin (its 1.36 dt against the half-angles'
-// 0.85 dt).
+// well within FitsLoadedLanes' margin (kTripleJumpReach's 1.36 dt against
+// the half-angles' 0.85 dt; the nested compositions' reach includes it).
 inline bool DampingFitsLoadedLanes(const Damping& damping, double dt_s) {
   return std::max(damping.linear_per_s, damping.angular_per_s) * dt_s <= kLanesMaxDecay;
 }

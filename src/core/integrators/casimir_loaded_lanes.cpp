@@ -1,7 +1,6 @@
 #include "casimir_loaded_lanes.h"
 
 #include <algorithm>
-#include <cmath>
 
 #include "step_parts.h"
 
@@ -20,7 +19,6 @@ LoadedLanes& LaneCache::NextLoadedBlock(std::size_t group) {
 }
 
 using lanes::Angles;
-using lanes::ExpMapSmall;
 using lanes::Quaternion;
 
 void LoadedLanes::FillIdle(std::size_t first) {
@@ -73,14 +71,12 @@ namespace {
 // The loaded Step of casimir_splitting4.cpp, lane by lane, in the principal
 // frame throughout: kick, then three times drift, A B A, the rotation about L
 // and a kick, with neighbouring half kicks merged (they act at the same pose
-// and time). kBodyAxes: whether any lane holds a body-axes force or couple
-// (without, their terms are left out). kDamped: whether any lane is damped;
+// and time). kBodyAxes: as for lanes::Kick. kDamped: whether any lane is damped;
 // `decays` then holds each lane's DecayOver for the outer and the inner
 // sub-step, which the drift and the rotation apply as DampedDrift and
 // DampedCasimirRotation do. kAngles: the series, or SinCosWide for the axis
-// flows and the rotation about L (whose angle then needs |L| after each
-// kick). q stays a unit quaternion to ~1e-16 through the products, so it is
-// normalised once, at the end.
+// flows and the rotation about L. q stays a unit quaternion to ~1e-16 through the products, so it
+// is normalised once, at the end.
 struct LaneDecays {
   // [sub-step: outer, inner][lane]
   double linear_factor[2][kLanes], linear_elapsed_s[2][kLanes];
@@ -102,45 +98,16 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
     Quaternion q = Multiply(Quaternion{b.orientation[0][l], b.orientation[1][l],
                                        b.orientation[2][l], b.orientation[3][l]},
                             axes);
-    double x[3], p[3], L_W[3], F_W[3], F_P[3] = {}, tau_W[3], tau_P[3] = {}, c[9];
+    double x[3], p[3], L_W[3];
     for (int k = 0; k < 3; ++k) {
       x[k] = b.position[k][l];
       p[k] = b.linear_momentum[k][l];
       L_W[k] = b.angular_momentum[k][l];
-      F_W[k] = b.force_world[k][l];
-      tau_W[k] = b.torque_world[k][l];
-      if constexpr (kBodyAxes) {
-        F_P[k] = b.force_principal[k][l];
-        tau_P[k] = b.torque_principal[k][l];
-      }
     }
-    for (int k = 0; k < 9; ++k) c[k] = b.moment[k][l];
     const double inverse_mass = 1.0 / b.mass[l];
     const double a1 = b.axis1[l], a3 = b.axis3[l], casimir = b.casimir[l];
 
-    // p += w F, L += w τ at the current pose R_WP.
-    const auto kick = [&](double w) __attribute__((always_inline)) {
-      double R_WP[9];
-      lanes::RotationMatrix(q, R_WP);
-      // M = C_P R_WPᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
-      const auto m = [&](int i, int j) __attribute__((always_inline)) {
-        return c[3 * i] * R_WP[3 * j] + c[3 * i + 1] * R_WP[3 * j + 1] +
-               c[3 * i + 2] * R_WP[3 * j + 2];
-      };
-      const double moment_torque[3] = {m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1)};
-      for (int k = 0; k < 3; ++k) {
-        double force = F_W[k], torque = tau_W[k] + moment_torque[k];
-        if constexpr (kBodyAxes) {
-          force += R_WP[3 * k] * F_P[0] + R_WP[3 * k + 1] * F_P[1] + R_WP[3 * k + 2] * F_P[2];
-          torque +=
-              R_WP[3 * k] * tau_P[0] + R_WP[3 * k + 1] * tau_P[1] + R_WP[3 * k + 2] * tau_P[2];
-        }
-        p[k] += w * force;
-        L_W[k] += w * torque;
-      }
-    };
-
-    kick(kicks[0]);
+    lanes::Kick<kBodyAxes>(b, l, q, kicks[0], p, L_W);
     for (int s = 0; s < 3; ++s) {
       double drift_s = substeps[s], spin_s = substeps[s];
       if constexpr (kDamped) {
@@ -153,25 +120,14 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
       lanes::Axis1Flow<kAngles>(a1, 0.5 * spin_s, m, &q);
       lanes::Axis3Flow<kAngles>(a3, spin_s, m, &q);
       lanes::Axis1Flow<kAngles>(a1, 0.5 * spin_s, m, &q);
-      const double turn = spin_s * casimir;
-      if constexpr (kAngles == Angles::kSeries) {
-        q = Multiply(ExpMapSmall(turn * L_W[0], turn * L_W[1], turn * L_W[2]), q);
-      } else {
-        // A square root that vectorises: this file is built without errno
-        // from math functions (CMakeLists.txt).
-        const double momentum_norm = std::sqrt(L_W[0] * L_W[0] + L_W[1] * L_W[1] + L_W[2] * L_W[2]);
-        Quaternion about_momentum =
-            lanes::ExpMapWideIncrement(turn, momentum_norm, L_W[0], L_W[1], L_W[2]);
-        about_momentum.w += 1.0;
-        q = Multiply(about_momentum, q);
-      }
+      lanes::TurnAboutMomentum<kAngles>(spin_s * casimir, L_W, &q);
       if constexpr (kDamped) {
         for (int k = 0; k < 3; ++k) {
           p[k] *= decays.linear_factor[substep_kind[s]][l];
           L_W[k] *= decays.angular_factor[substep_kind[s]][l];
         }
       }
-      kick(kicks[s + 1]);
+      lanes::Kick<kBodyAxes>(b, l, q, kicks[s + 1], p, L_W);
     }
 
     q = lanes::Normalized(Multiply(q, Quaternion{-axes.x, -axes.y, -axes.z, axes.w}));

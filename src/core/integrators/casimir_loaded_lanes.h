@@ -1,13 +1,16 @@
-// The loaded `casimir_splitting4` step for kLanes bodies at once: the
-// triple jump of kick–drift–rotate–kick steps with the held wrenches
-// (HeldLoads) evaluated in the lanes, one loop over the lanes without
-// branches or calls, as casimir_free_lanes.h does for free bodies.
+// Loaded bodies kLanes at a time: the lanes with their held wrenches
+// (HeldLoads) in the principal frame, the pieces every loaded kernel
+// shares (the kick, the turn about L), the `casimir_splitting4` kernel (the
+// triple jump of kick–drift–rotate–kick steps, one loop over the lanes
+// without branches or calls, as casimir_free_lanes.h does for free bodies;
+// the Runge–Kutta–Nyström compositions' kernel is nested_loaded_lanes.h),
+// and StepLoadedInLanes, which hands a batch's bodies to them.
 #pragma once
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <type_traits>
 #include <vector>
 
 #include "casimir_free_lanes.h"
@@ -48,16 +51,70 @@ struct LoadedLanes : LaneBodies {
   void Store(std::size_t lane, BodyState* state) const;
 };
 
+namespace lanes {
+
+// p += w F, L += w τ for lane l of `b` at the orientation q = R_WP of its
+// principal frame. kBodyAxes: whether the lanes hold a body-axes force or
+// couple (without, their terms are left out).
+template <bool kBodyAxes>
+inline __attribute__((always_inline)) void Kick(const LoadedLanes& b, std::size_t l,
+                                                const Quaternion& q, double w, double p[3],
+                                                double L_W[3]) {
+  double R_WP[9];
+  RotationMatrix(q, R_WP);
+  // M = C_P R_WPᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
+  const auto m = [&](int i, int j) __attribute__((always_inline)) {
+    return b.moment[3 * i][l] * R_WP[3 * j] + b.moment[3 * i + 1][l] * R_WP[3 * j + 1] +
+           b.moment[3 * i + 2][l] * R_WP[3 * j + 2];
+  };
+  const double moment_torque[3] = {m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1)};
+  for (int k = 0; k < 3; ++k) {
+    double force = b.force_world[k][l], torque = b.torque_world[k][l] + moment_torque[k];
+    if constexpr (kBodyAxes) {
+      const auto& F_P = b.force_principal;
+      const auto& tau_P = b.torque_principal;
+      force += R_WP[3 * k] * F_P[0][l] + R_WP[3 * k + 1] * F_P[1][l] + R_WP[3 * k + 2] * F_P[2][l];
+      torque +=
+          R_WP[3 * k] * tau_P[0][l] + R_WP[3 * k + 1] * tau_P[1][l] + R_WP[3 * k + 2] * tau_P[2][l];
+    }
+    p[k] += w * force;
+    L_W[k] += w * torque;
+  }
+}
+
+// q ← exp(θ) q, θ = angle_per_momentum · L: by the series, or for kWide from
+// SinCosWide of |θ|/2 (|L| found here; a square root that vectorises only
+// where errno is off, CMakeLists.txt).
+template <Angles angles>
+inline __attribute__((always_inline)) void TurnAboutMomentum(double angle_per_momentum,
+                                                             const double L_W[3], Quaternion* q) {
+  if constexpr (angles == Angles::kSeries) {
+    *q = Multiply(ExpMapSmall(angle_per_momentum * L_W[0], angle_per_momentum * L_W[1],
+                              angle_per_momentum * L_W[2]),
+                  *q);
+  } else {
+    const double momentum_norm = std::sqrt(L_W[0] * L_W[0] + L_W[1] * L_W[1] + L_W[2] * L_W[2]);
+    Quaternion turn =
+        ExpMapWideIncrement(angle_per_momentum, momentum_norm, L_W[0], L_W[1], L_W[2]);
+    turn.w += 1.0;
+    *q = Multiply(turn, *q);
+  }
+}
+
+}  // namespace lanes
+
 // Advances every lane by h; the bodies in use must fit (FitsLoadedLanes,
 // DampingFitsLoadedLanes). Clears body_axes and damped.
 void CasimirLoadedStep4(double h, LoadedLanes* lanes);
 // The same with SinCosWide, for bodies that fit FitsLoadedWideLanes alone.
 void CasimirLoadedWideStep4(double h, LoadedLanes* lanes);
 
-// A scheme's loaded lane kernels, one per range of step angles.
+// A scheme's loaded lane kernels, one per range of step angles, and what
+// their step reaches.
 struct LoadedLaneKernels {
   void (*series)(double h, LoadedLanes* lanes);  // bodies that fit FitsLoadedLanes
   void (*wide)(double h, LoadedLanes* lanes);    // the others that fit FitsLoadedWideLanes
+  LoadedLanesReach reach;
 };
 
 // Integrator::StepLoaded through the lanes. A body whose load is a constant
@@ -67,13 +124,13 @@ struct LoadedLaneKernels {
 // free lanes of its angles (`free_lanes`) and then the rest of that motion;
 // a damped body is loaded however small its wrench, which keeps damping out
 // of the free lanes. Other bodies that fit take the `loaded_lanes` kernel of
-// their angles (nullptr: a scheme without them), the rest
-// `step_one(model, load, dt_s, state)`. The blocks of loaded lanes come from
+// their angles, the rest `step_one(model, load, dt_s, state)` (too fast for
+// the lanes, or too strongly damped). The blocks of loaded lanes come from
 // batch.lane_cache (or, without one, from a cache of this call alone).
-template <typename LoadedKernel, typename StepOne>
+template <typename StepOne>
 void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels& free_lanes,
-                       const LoadedKernel& loaded_lanes, StepOne step_one) {
-  constexpr bool kHasLoadedLanes = !std::is_same_v<LoadedKernel, std::nullptr_t>;
+                       const LoadedLaneKernels& loaded_lanes, StepOne step_one) {
+  const LoadedLanesReach& reach = loaded_lanes.reach;
   FreeLaneQueues pulled(free_lanes);  // bodies under a constant force
   const auto flush_pulled = [&](FreeLaneQueue& queue) {
     queue.Flush(dt_s, [&](std::size_t l, std::size_t body) {
@@ -87,10 +144,9 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
   // Bodies under a load that depends on the orientation, in groups by their
   // angles (the series or wide), whether they are damped and whether they
   // hold a body-axes part: the kernel instance a group runs then is the one
-  // each of its bodies calls for, so that a body's
-  // result does not depend on which bodies share its lanes (a damped
-  // instance rounds an undamped lane's kick differently), and so not on the
-  // batches or threads of the World.
+  // each of its bodies calls for, so that a body's result does not depend on
+  // which bodies share its lanes (a damped instance rounds an undamped lane's
+  // kick differently), and so not on the batches or threads of the World.
   constexpr std::size_t kGroups = LaneCache::kLoadedGroups;
   constexpr std::size_t kWideGroups = kGroups / 2;  // the first group of wide angles
   LaneCache call_cache;
@@ -99,14 +155,11 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
   std::size_t turned_bodies[kGroups][kLanes];
   std::size_t turned_count[kGroups] = {};
   const auto flush_turned = [&](std::size_t group) {
-    if constexpr (kHasLoadedLanes) {
-      LoadedLanes& lanes = *turned[group];
-      const std::size_t count = turned_count[group];
-      if (count < kLanes) lanes.FillIdle(count);
-      (group < kWideGroups ? loaded_lanes.series : loaded_lanes.wide)(dt_s, &lanes);
-      for (std::size_t l = 0; l < count; ++l)
-        lanes.Store(l, &batch.states[turned_bodies[group][l]]);
-    }
+    LoadedLanes& lanes = *turned[group];
+    const std::size_t count = turned_count[group];
+    if (count < kLanes) lanes.FillIdle(count);
+    (group < kWideGroups ? loaded_lanes.series : loaded_lanes.wide)(dt_s, &lanes);
+    for (std::size_t l = 0; l < count; ++l) lanes.Store(l, &batch.states[turned_bodies[group][l]]);
     turned[group] = nullptr;
     turned_count[group] = 0;
   };
@@ -118,8 +171,8 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     FreeLaneQueue* queue = load.has_torque() || damped ? nullptr : pulled.For(model, state, dt_s);
     if (queue != nullptr) {
       if (queue->Add(body, model, state)) flush_pulled(*queue);
-    } else if (const bool series = FitsLoadedLanes(model, state, load, dt_s);
-               kHasLoadedLanes && (series || FitsLoadedWideLanes(model, state, load, dt_s)) &&
+    } else if (const bool series = FitsLoadedLanes(model, state, load, dt_s, reach);
+               (series || FitsLoadedWideLanes(model, state, load, dt_s, reach)) &&
                (!damped || DampingFitsLoadedLanes(load.damping(), dt_s))) {
       const std::size_t group =
           (series ? 0 : kWideGroups) + (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
@@ -128,7 +181,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
       turned_bodies[group][turned_count[group]++] = body;
       if (turned_count[group] == kLanes) flush_turned(group);
     } else {
-      step_one(model, load, dt_s, &state);  // too fast for the lanes' series
+      step_one(model, load, dt_s, &state);
     }
   }
   pulled.FlushAll(flush_pulled);

@@ -3,6 +3,7 @@
 #include "casimir_free_lanes.h"
 #include "casimir_loaded_lanes.h"
 #include "compositions.h"
+#include "nested_loaded_lanes.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -47,7 +48,35 @@ RBS_SIMD_CLONES void CasimirRkn6FreeWideLanes(double h, FreeLanes* lanes) {
   CompositionFreeLanes<lanes::Angles::kWide>(Compositions<6>::kFree, h, lanes);
 }
 
+// The loaded steps of kLanes bodies at once, likewise.
+RBS_SIMD_CLONES void CasimirRkn4LoadedLanes(double h, LoadedLanes* lanes) {
+  NestedLoadedLanes<lanes::Angles::kSeries>(Compositions<4>::kOuter, Compositions<4>::kInner, h,
+                                            lanes);
+}
+
+RBS_SIMD_CLONES void CasimirRkn4LoadedWideLanes(double h, LoadedLanes* lanes) {
+  NestedLoadedLanes<lanes::Angles::kWide>(Compositions<4>::kOuter, Compositions<4>::kInner, h,
+                                          lanes);
+}
+
+RBS_SIMD_CLONES void CasimirRkn6LoadedLanes(double h, LoadedLanes* lanes) {
+  NestedLoadedLanes<lanes::Angles::kSeries>(Compositions<6>::kOuter, Compositions<6>::kInner, h,
+                                            lanes);
+}
+
+RBS_SIMD_CLONES void CasimirRkn6LoadedWideLanes(double h, LoadedLanes* lanes) {
+  NestedLoadedLanes<lanes::Angles::kWide>(Compositions<6>::kOuter, Compositions<6>::kInner, h,
+                                          lanes);
+}
+
 namespace {
+
+template <int kOrder>
+constexpr LoadedLaneKernels kLoadedLanes =
+    kOrder == 4 ? LoadedLaneKernels{CasimirRkn4LoadedLanes, CasimirRkn4LoadedWideLanes,
+                                    NestedLanesReach(Compositions<4>::kOuter)}
+                : LoadedLaneKernels{CasimirRkn6LoadedLanes, CasimirRkn6LoadedWideLanes,
+                                    NestedLanesReach(Compositions<6>::kOuter)};
 
 template <int kOrder>
 constexpr FreeLaneKernels kFreeLanes =
@@ -86,10 +115,9 @@ void CasimirRknIntegrator<kOrder>::StepFree(const BodyBatch& batch, double dt_s)
                   });
 }
 
-// Bodies under a constant force in the free lanes; the others one by one.
 template <int kOrder>
 void CasimirRknIntegrator<kOrder>::StepLoaded(const BodyBatch& batch, double dt_s) const {
-  StepLoadedInLanes(batch, dt_s, kFreeLanes<kOrder>, nullptr,
+  StepLoadedInLanes(batch, dt_s, kFreeLanes<kOrder>, kLoadedLanes<kOrder>,
                     [this](const BodyModel& model, const HeldLoads& load, double h,
                            BodyState* state) { Step(model, &load, h, state); });
 }

@@ -24,7 +24,8 @@ RBS_SIMD_CLONES void CasimirSplitting4FreeWideLanes(double h, FreeLanes* lanes) 
 }
 namespace {
 constexpr FreeLaneKernels kFreeLanes = {CasimirSplitting4FreeLanes, CasimirSplitting4FreeWideLanes};
-constexpr LoadedLaneKernels kLoadedLanes = {CasimirLoadedStep4, CasimirLoadedWideStep4};
+constexpr LoadedLaneKernels kLoadedLanes = {CasimirLoadedStep4, CasimirLoadedWideStep4,
+                                            kTripleJumpReach};
 }  // namespace
 
 void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load, double dt_s,

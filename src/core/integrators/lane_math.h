@@ -25,7 +25,8 @@ struct Quaternion {
   double x, y, z, w;
 };
 
-inline Quaternion Multiply(const Quaternion& a, const Quaternion& b) {
+inline __attribute__((always_inline)) Quaternion Multiply(const Quaternion& a,
+                                                          const Quaternion& b) {
   return {
       a.w * b.x + a.x * b.w + a.y * b.z - a.z * b.y, a.w * b.y - a.x * b.z + a.y * b.w + a.z * b.x,
       a.w * b.z + a.x * b.y - a.y * b.x + a.z * b.w, a.w * b.w - a.x * b.x - a.y * b.y - a.z * b.z};
@@ -35,7 +36,9 @@ inline Quaternion Multiply(const Quaternion& a, const Quaternion& b) {
 // and sin(|θ|/2)/|θ| in |θ|²: no square root, no division (truncation <
 // 1e-21). As a rotation increment (x, y, z, w − 1) (free_rotation.h), and
 // as the unit quaternion.
-inline Quaternion ExpMapSmallIncrement(double theta_x, double theta_y, double theta_z) {
+inline __attribute__((always_inline)) Quaternion ExpMapSmallIncrement(double theta_x,
+                                                                      double theta_y,
+                                                                      double theta_z) {
   const double u2 = 0.25 * (theta_x * theta_x + theta_y * theta_y + theta_z * theta_z);
   const double half_cos_minus_one =
       u2 * (-1.0 / 2 + u2 * (1.0 / 24 + u2 * (-1.0 / 720 + u2 * (1.0 / 40320))));
@@ -44,7 +47,8 @@ inline Quaternion ExpMapSmallIncrement(double theta_x, double theta_y, double th
   return {sin_ratio * theta_x, sin_ratio * theta_y, sin_ratio * theta_z, half_cos_minus_one};
 }
 
-inline Quaternion ExpMapSmall(double theta_x, double theta_y, double theta_z) {
+inline __attribute__((always_inline)) Quaternion ExpMapSmall(double theta_x, double theta_y,
+                                                             double theta_z) {
   Quaternion q = ExpMapSmallIncrement(theta_x, theta_y, theta_z);
   q.w += 1.0;
   return q;
@@ -139,7 +143,8 @@ inline Quaternion AddStepRotation(const Quaternion& orientation, const Quaternio
 }
 
 // R(q)ᵀ v for a unit q: v + w t + n × t with n = −q_vec and t = 2 n × v.
-inline void RotateInverse(const Quaternion& q, double vx, double vy, double vz, double out[3]) {
+inline __attribute__((always_inline)) void RotateInverse(const Quaternion& q, double vx, double vy,
+                                                         double vz, double out[3]) {
   const double nx = -q.x, ny = -q.y, nz = -q.z;
   const double tx = 2.0 * (ny * vz - nz * vy), ty = 2.0 * (nz * vx - nx * vz),
                tz = 2.0 * (nx * vy - ny * vx);
@@ -149,7 +154,7 @@ inline void RotateInverse(const Quaternion& q, double vx, double vy, double vz, 
 }
 
 // |q|² = 1 + ε with ε ~ 1e-16: one Newton step leaves O(ε²).
-inline Quaternion Normalized(const Quaternion& q) {
+inline __attribute__((always_inline)) Quaternion Normalized(const Quaternion& q) {
   const double scale = 1.5 - 0.5 * (q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w);
   return {scale * q.x, scale * q.y, scale * q.z, scale * q.w};
 }
