@@ -169,17 +169,23 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     BodyState& state = batch.states[body];
     const bool damped = load.has_damping();
     FreeLaneQueue* queue = load.has_torque() || damped ? nullptr : pulled.For(model, state, dt_s);
-    if (queue != nullptr) {
-      if (queue->Add(body, model, state)) flush_pulled(*queue);
-    } else if (const bool series = FitsLoadedLanes(model, state, load, dt_s, reach);
-               (series || FitsLoadedWideLanes(model, state, load, dt_s, reach)) &&
-               (!damped || DampingFitsLoadedLanes(load.damping(), dt_s))) {
-      const std::size_t group =
-          (series ? 0 : kWideGroups) + (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
+    // The group by branches, not by arithmetic on the fit: a predicted
+    // branch lets the copy into the lanes start before the fit is computed.
+    const auto turn_in = [&](std::size_t angles_group) __attribute__((always_inline)) {
+      const std::size_t group = angles_group + (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
       if (turned[group] == nullptr) turned[group] = &cache.NextLoadedBlock(group);
       turned[group]->Load(turned_count[group], model, state, load);
       turned_bodies[group][turned_count[group]++] = body;
       if (turned_count[group] == kLanes) flush_turned(group);
+    };
+    if (queue != nullptr) {
+      if (queue->Add(body, model, state)) flush_pulled(*queue);
+    } else if (damped && !DampingFitsLoadedLanes(load.damping(), dt_s)) {
+      step_one(model, load, dt_s, &state);
+    } else if (FitsLoadedLanes(model, state, load, dt_s, reach)) {
+      turn_in(0);
+    } else if (FitsLoadedWideLanes(model, state, load, dt_s, reach)) {
+      turn_in(kWideGroups);
     } else {
       step_one(model, load, dt_s, &state);
     }
