@@ -71,7 +71,7 @@ namespace {
 // The loaded Step of casimir_splitting4.cpp, lane by lane, in the principal
 // frame throughout: kick, then three times drift, A B A, the rotation about L
 // and a kick, with neighbouring half kicks merged (they act at the same pose
-// and time). kBodyAxes: as for lanes::Kick. kDamped: whether any lane is damped;
+// and time). kBodyAxes: as for lanes::LoadOf. kDamped: whether any lane is damped;
 // `decays` then holds each lane's DecayOver for the outer and the inner
 // sub-step, which the drift and the rotation apply as DampedDrift and
 // DampedCasimirRotation do. kAngles: the series, or SinCosWide for the axis
@@ -104,10 +104,11 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
       p[k] = b.linear_momentum[k][l];
       L_W[k] = b.angular_momentum[k][l];
     }
+    const lanes::LaneLoad load = lanes::LoadOf<kBodyAxes>(b, l);
     const double inverse_mass = 1.0 / b.mass[l];
     const double a1 = b.axis1[l], a3 = b.axis3[l], casimir = b.casimir[l];
 
-    lanes::Kick<kBodyAxes>(b, l, q, kicks[0], p, L_W);
+    lanes::Kick<kBodyAxes>(load, q, kicks[0], p, L_W);
     for (int s = 0; s < 3; ++s) {
       double drift_s = substeps[s], spin_s = substeps[s];
       if constexpr (kDamped) {
@@ -127,7 +128,7 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
           L_W[k] *= decays.angular_factor[substep_kind[s]][l];
         }
       }
-      lanes::Kick<kBodyAxes>(b, l, q, kicks[s + 1], p, L_W);
+      lanes::Kick<kBodyAxes>(load, q, kicks[s + 1], p, L_W);
     }
 
     q = lanes::Normalized(Multiply(q, Quaternion{-axes.x, -axes.y, -axes.z, axes.w}));

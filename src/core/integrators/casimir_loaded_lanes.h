@@ -53,29 +53,47 @@ struct LoadedLanes : LaneBodies {
 
 namespace lanes {
 
-// p += w F, L += w τ for lane l of `b` at the orientation q = R_WP of its
-// principal frame. kBodyAxes: whether the lanes hold a body-axes force or
-// couple (without, their terms are left out).
+// One lane's load parts, as LoadedLanes holds them; the body-axes ones only
+// with kBodyAxes (whether the lanes hold a body-axes force or couple;
+// without, their terms are left out).
+struct LaneLoad {
+  double force_world[3], force_principal[3], torque_world[3], torque_principal[3], moment[9];
+};
+
 template <bool kBodyAxes>
-inline __attribute__((always_inline)) void Kick(const LoadedLanes& b, std::size_t l,
-                                                const Quaternion& q, double w, double p[3],
-                                                double L_W[3]) {
+inline __attribute__((always_inline)) LaneLoad LoadOf(const LoadedLanes& b, std::size_t l) {
+  LaneLoad load{};
+  for (int k = 0; k < 3; ++k) {
+    load.force_world[k] = b.force_world[k][l];
+    load.torque_world[k] = b.torque_world[k][l];
+    if constexpr (kBodyAxes) {
+      load.force_principal[k] = b.force_principal[k][l];
+      load.torque_principal[k] = b.torque_principal[k][l];
+    }
+  }
+  for (int k = 0; k < 9; ++k) load.moment[k] = b.moment[k][l];
+  return load;
+}
+
+// p += w F, L += w τ at the orientation q = R_WP of the principal frame.
+template <bool kBodyAxes>
+inline __attribute__((always_inline)) void Kick(const LaneLoad& load, const Quaternion& q, double w,
+                                                double p[3], double L_W[3]) {
   double R_WP[9];
   RotationMatrix(q, R_WP);
   // M = C_P R_WPᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
+  const double* c = load.moment;
   const auto m = [&](int i, int j) __attribute__((always_inline)) {
-    return b.moment[3 * i][l] * R_WP[3 * j] + b.moment[3 * i + 1][l] * R_WP[3 * j + 1] +
-           b.moment[3 * i + 2][l] * R_WP[3 * j + 2];
+    return c[3 * i] * R_WP[3 * j] + c[3 * i + 1] * R_WP[3 * j + 1] + c[3 * i + 2] * R_WP[3 * j + 2];
   };
   const double moment_torque[3] = {m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1)};
   for (int k = 0; k < 3; ++k) {
-    double force = b.force_world[k][l], torque = b.torque_world[k][l] + moment_torque[k];
+    double force = load.force_world[k], torque = load.torque_world[k] + moment_torque[k];
     if constexpr (kBodyAxes) {
-      const auto& F_P = b.force_principal;
-      const auto& tau_P = b.torque_principal;
-      force += R_WP[3 * k] * F_P[0][l] + R_WP[3 * k + 1] * F_P[1][l] + R_WP[3 * k + 2] * F_P[2][l];
-      torque +=
-          R_WP[3 * k] * tau_P[0][l] + R_WP[3 * k + 1] * tau_P[1][l] + R_WP[3 * k + 2] * tau_P[2][l];
+      const double* F_P = load.force_principal;
+      const double* tau_P = load.torque_principal;
+      force += R_WP[3 * k] * F_P[0] + R_WP[3 * k + 1] * F_P[1] + R_WP[3 * k + 2] * F_P[2];
+      torque += R_WP[3 * k] * tau_P[0] + R_WP[3 * k + 1] * tau_P[1] + R_WP[3 * k + 2] * tau_P[2];
     }
     p[k] += w * force;
     L_W[k] += w * torque;
@@ -180,11 +198,10 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     };
     if (queue != nullptr) {
       if (queue->Add(body, model, state)) flush_pulled(*queue);
-    } else if (damped && !DampingFitsLoadedLanes(load.damping(), dt_s)) {
-      step_one(model, load, dt_s, &state);
-    } else if (FitsLoadedLanes(model, state, load, dt_s, reach)) {
+    } else if (const bool damping_fits = !damped || DampingFitsLoadedLanes(load.damping(), dt_s);
+               damping_fits && FitsLoadedLanes(model, state, load, dt_s, reach)) {
       turn_in(0);
-    } else if (FitsLoadedWideLanes(model, state, load, dt_s, reach)) {
+    } else if (damping_fits && FitsLoadedWideLanes(model, state, load, dt_s, reach)) {
       turn_in(kWideGroups);
     } else {
       step_one(model, load, dt_s, &state);

@@ -69,7 +69,7 @@ inline __attribute__((always_inline)) void TurnLanes(NestedLaneState* s, Turn tu
   }
 }
 
-// The step. kBodyAxes as for lanes::Kick; kDamped: whether any lane is
+// The step. kBodyAxes as for lanes::LoadOf; kDamped: whether any lane is
 // damped (then `decays` holds each lane's decays, which the free flows apply
 // as NestedStep does); kAngles: the series or SinCosWide. Π is found again
 // after each kick; q stays a unit quaternion to ~1e-16 through the products
@@ -137,7 +137,7 @@ inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<
       const Quaternion q{s.q[0][l], s.q[1][l], s.q[2][l], s.q[3][l]};
       double p[3] = {s.p[0][l], s.p[1][l], s.p[2][l]};
       double L_W[3] = {s.L_W[0][l], s.L_W[1][l], s.L_W[2][l]};
-      lanes::Kick<kBodyAxes>(b, l, q, outer.kick[i] * h, p, L_W);
+      lanes::Kick<kBodyAxes>(lanes::LoadOf<kBodyAxes>(b, l), q, outer.kick[i] * h, p, L_W);
       double body_momentum[3];
       lanes::RotateInverse(q, L_W[0], L_W[1], L_W[2], body_momentum);
       for (int k = 0; k < 3; ++k) {
