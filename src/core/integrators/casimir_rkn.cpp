@@ -49,24 +49,22 @@ RBS_SIMD_CLONES void CasimirRkn6FreeWideLanes(double h, FreeLanes* lanes) {
 }
 
 // The loaded steps of kLanes bodies at once, likewise.
+template <int kOrder, lanes::Angles kAngles>
+inline __attribute__((always_inline)) void LoadedLanesOf(double h, LoadedLanes* lanes) {
+  NestedLoadedLanes<kAngles>(Compositions<kOrder>::kOuter, Compositions<kOrder>::kInner, h, lanes);
+}
+
 RBS_SIMD_CLONES void CasimirRkn4LoadedLanes(double h, LoadedLanes* lanes) {
-  NestedLoadedLanes<lanes::Angles::kSeries>(Compositions<4>::kOuter, Compositions<4>::kInner, h,
-                                            lanes);
+  LoadedLanesOf<4, lanes::Angles::kSeries>(h, lanes);
 }
-
 RBS_SIMD_CLONES void CasimirRkn4LoadedWideLanes(double h, LoadedLanes* lanes) {
-  NestedLoadedLanes<lanes::Angles::kWide>(Compositions<4>::kOuter, Compositions<4>::kInner, h,
-                                          lanes);
+  LoadedLanesOf<4, lanes::Angles::kWide>(h, lanes);
 }
-
 RBS_SIMD_CLONES void CasimirRkn6LoadedLanes(double h, LoadedLanes* lanes) {
-  NestedLoadedLanes<lanes::Angles::kSeries>(Compositions<6>::kOuter, Compositions<6>::kInner, h,
-                                            lanes);
+  LoadedLanesOf<6, lanes::Angles::kSeries>(h, lanes);
 }
-
 RBS_SIMD_CLONES void CasimirRkn6LoadedWideLanes(double h, LoadedLanes* lanes) {
-  NestedLoadedLanes<lanes::Angles::kWide>(Compositions<6>::kOuter, Compositions<6>::kInner, h,
-                                          lanes);
+  LoadedLanesOf<6, lanes::Angles::kWide>(h, lanes);
 }
 
 namespace {
