@@ -42,15 +42,16 @@ struct FlowDecays {
   double angular_factor[flows][kLanes], angular_elapsed_s[flows][kLanes];
 };
 
-// The lanes' state during a step, lane-major as LoadedLanes: the
-// principal frame's orientation q = R_WP and Π = R_WPᵀ L besides x, p, L.
+// The lanes' state during a step, in structure-of-arrays form as
+// LoadedLanes: the principal frame's orientation q = R_WP and Π = R_WPᵀ L
+// besides x, p, L.
 struct NestedLaneState {
   double q[4][kLanes];  // x, y, z, w
   double body_momentum[3][kLanes];
   double x[3][kLanes], p[3][kLanes], L_W[3][kLanes];
 };
 
-// f(lane, q, Π) on every lane, with q and Π written back: one short loop
+// turn(lane, Π, q) on every lane, with Π and q written back: one short loop
 // the compiler vectorises whole, however many of them the composition
 // strings together (one loop around all of them would be past what it
 // inlines).
