@@ -71,12 +71,12 @@ namespace {
 // The loaded Step of casimir_splitting4.cpp, lane by lane, in the principal
 // frame throughout: kick, then three times drift, A B A, the rotation about L
 // and a kick, with neighbouring half kicks merged (they act at the same pose
-// and time). kBodyAxes: as for lanes::LoadOf. kDamped: whether any lane is damped;
-// `decays` then holds each lane's DecayOver for the outer and the inner
-// sub-step, which the drift and the rotation apply as DampedDrift and
+// and time). kBodyAxes: as for lanes::LoadOf. kDamped: whether any lane is
+// damped; `decays` then holds each lane's DecayOver for the outer and the
+// inner sub-step, which the drift and the rotation apply as DampedDrift and
 // DampedCasimirRotation do. kAngles: the series, or SinCosWide for the axis
-// flows and the rotation about L. q stays a unit quaternion to ~1e-16 through the products, so it
-// is normalised once, at the end.
+// flows and the rotation about L. q stays a unit quaternion to ~1e-16
+// through the products, so it is normalised once, at the end.
 struct LaneDecays {
   // [sub-step: outer, inner][lane]
   double linear_factor[2][kLanes], linear_elapsed_s[2][kLanes];

@@ -83,7 +83,9 @@ inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<
   using lanes::Quaternion;
   LoadedLanes& b = *lanes;
   NestedLaneState s;
+  double inverse_mass[kLanes];
   for (std::size_t l = 0; l < kLanes; ++l) {
+    inverse_mass[l] = 1.0 / b.mass[l];
     const Quaternion q = Multiply(Quaternion{b.orientation[0][l], b.orientation[1][l],
                                              b.orientation[2][l], b.orientation[3][l]},
                                   Quaternion{b.principal_axes[0][l], b.principal_axes[1][l],
@@ -129,7 +131,7 @@ inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<
           s.L_W[k][l] *= decays.angular_factor[i][l];
           s.body_momentum[k][l] *= decays.angular_factor[i][l];
         }
-        s.x[k][l] += drift_s[l] / b.mass[l] * s.p[k][l];
+        s.x[k][l] += drift_s[l] * inverse_mass[l] * s.p[k][l];
         if constexpr (kDamped) s.p[k][l] *= decays.linear_factor[i][l];
       }
     }
