@@ -29,7 +29,9 @@ void Integrator::StepFree(const BodyBatch& batch, double dt_s) const {
 
 void Integrator::StepLoaded(const BodyBatch& batch, double dt_s) const {
   for (const std::size_t body : batch) {
-    Step(batch.models[body], &batch.loads[body], dt_s, &batch.states[body]);
+    BodyState next = batch.states[body];
+    Step(batch.models[body], &batch.loads[body], dt_s, &next);
+    CommitStep(batch, body, next);
   }
 }
 

@@ -60,7 +60,6 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
     share.free_batch.reserve(kBatch);
     share.free_batch_before.reserve(kBatch);
     share.loaded_batch.reserve(kBatch);
-    share.loaded_batch_before.reserve(kBatch);
     share.substep_batches.reserve(kSubstepBatches);
   }
   team_ = std::make_unique<ThreadTeam>(options_.threads);
@@ -183,7 +182,6 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       case StepClass::kBatched:
         if (load != nullptr) {
           share->loaded_batch.push_back(i);
-          share->loaded_batch_before.push_back(state);
           if (share->loaded_batch.size() == kBatch) StepLoadedBatch(share);
         } else {
           share->free_batch.push_back(i);
@@ -291,12 +289,14 @@ BodyBatch World::Batch(const std::vector<std::size_t>& indices, LaneCache* cache
 
 void World::StepLoadedBatch(Share* share) {
   if (share->loaded_batch.empty()) return;
-  integrator_->StepLoaded(Batch(share->loaded_batch, &share->lane_cache), options_.dt_s);
-  for (std::size_t k = 0; k < share->loaded_batch.size(); ++k) {
-    CheckOrRestore(share->loaded_batch[k], share->loaded_batch_before[k], share);
+  BodyBatch batch = Batch(share->loaded_batch, &share->lane_cache);
+  std::vector<BodyFault>& faults = bodies_.hot().faults;
+  batch.faults = faults.data();
+  integrator_->StepLoaded(batch, options_.dt_s);
+  for (const std::size_t index : share->loaded_batch) {
+    if (faults[index] != BodyFault::kNone) ++share->frozen;
   }
   share->loaded_batch.clear();
-  share->loaded_batch_before.clear();
 }
 
 void World::StepFreeBatch(Share* share) {

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
@@ -31,10 +32,28 @@ struct BodyBatch {
   // The calling thread's cache (lane_cache.h), kept by the World from step
   // to step; null: none.
   LaneCache* lane_cache = nullptr;
+  // Where Integrator::StepLoaded records a body whose step breaks a
+  // CheckState bound, indexed like states; such a body keeps its state from
+  // before the step, so the caller needs no copy of it. Null: the caller
+  // checks.
+  BodyFault* faults = nullptr;
 
   const std::size_t* begin() const { return indices; }
   const std::size_t* end() const { return indices + size; }
 };
+
+// Writes body `body`'s stepped state `next`, or, when the batch records
+// faults and `next` breaks a CheckState bound, records that instead.
+inline void CommitStep(const BodyBatch& batch, std::size_t body, const BodyState& next) {
+  if (batch.faults != nullptr) {
+    const BodyFault fault = CheckState(batch.models[body], next);
+    if (fault != BodyFault::kNone) {
+      batch.faults[body] = fault;
+      return;
+    }
+  }
+  batch.states[body] = next;
+}
 
 // One row of the integrator table.
 struct IntegratorInfo {
@@ -61,7 +80,8 @@ class Integrator {
   virtual void StepFree(const BodyBatch& batch, double dt_s) const;
   // Advances the full-rank bodies of `batch` under their held loads by dt_s,
   // as Step would, several at a time where a scheme can; this default steps
-  // them one by one.
+  // them one by one. With BodyBatch::faults each new state passes
+  // CommitStep; without, checking them is the caller's.
   virtual void StepLoaded(const BodyBatch& batch, double dt_s) const;
   // Whether StepFree and StepLoaded continue each body's torque-free flow
   // from BodyBatch::free_flows, a column the World then keeps for it alone.

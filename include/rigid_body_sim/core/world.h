@@ -181,9 +181,8 @@ class World {
     std::vector<std::size_t> free_batch;
     std::vector<Pose> free_batch_before;
     // Loaded full-rank bodies that need no substeps, batched the same way
-    // through Integrator::StepLoaded, and their states before it.
+    // through Integrator::StepLoaded, which checks them (BodyBatch::faults).
     std::vector<std::size_t> loaded_batch;
-    std::vector<BodyState> loaded_batch_before;
     // Full-rank bodies that need n > 1 substeps, batched by n and by whether
     // they are loaded: a batch takes n steps of dt/n through StepFree or
     // StepLoaded, so through the lanes as well, with a cache of its own that
@@ -231,7 +230,9 @@ class World {
   // Steps the bodies in share->free_batch through StepFree, checks each, and
   // empties it.
   void StepFreeBatch(Share* share);
-  // The same for share->loaded_batch through StepLoaded.
+  // The same for share->loaded_batch through StepLoaded, which checks each
+  // body before it writes the state back: a loaded step changes the whole
+  // state, which a copy before the step would cost.
   void StepLoadedBatch(Share* share);
   // Adds body `index` to the substep batch of its n and kind, stepping the
   // batch when full; false (and nothing done) when every batch is taken by

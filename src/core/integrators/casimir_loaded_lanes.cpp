@@ -33,37 +33,23 @@ void LoadedLanes::FillIdle(std::size_t first) {
     for (int k = 0; k < 9; ++k) moment[k][l] = 0.0;
     linear_damping[l] = 0.0;
     angular_damping[l] = 0.0;
+    inverse_moment_max[l] = 0.0;
     load_stamp[l] = 0;
   }
 }
 
-void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const BodyState& state,
-                       const HeldLoads& loads) {
-  LaneBodies::Load(lane, model, state);
-  body_axes = body_axes || loads.has_body_axes();
-  damped = damped || loads.has_damping();
-  const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
-  if (load_stamp[lane] == principal.stamp) return;
-  load_stamp[lane] = principal.stamp;
-  const Damping damping = loads.damping();
-  linear_damping[lane] = damping.linear_per_s;
-  angular_damping[lane] = damping.angular_per_s;
-  for (int k = 0; k < 3; ++k) {
-    force_world[k][lane] = loads.force_world()[k];
-    force_principal[k][lane] = principal.force_body[k];
-    torque_world[k][lane] = loads.torque_world()[k];
-    torque_principal[k][lane] = principal.torque_body[k];
-    for (int j = 0; j < 3; ++j) moment[3 * k + j][lane] = principal.force_moment(k, j);
+RBS_SIMD_CLONES void LoadedLanes::Faults(BodyFault fault[kLanes]) const {
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    double component_sum = 0.0, momentum_sq = 0.0, angular_momentum_sq = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      component_sum += position[k][l] + linear_momentum[k][l] + angular_momentum[k][l];
+      momentum_sq += linear_momentum[k][l] * linear_momentum[k][l];
+      angular_momentum_sq += angular_momentum[k][l] * angular_momentum[k][l];
+    }
+    for (int k = 0; k < 4; ++k) component_sum += orientation[k][l];
+    fault[l] =
+        StateFault(component_sum, momentum_sq, angular_momentum_sq, mass[l], inverse_moment_max[l]);
   }
-}
-
-void LoadedLanes::Store(std::size_t lane, BodyState* state) const {
-  for (int k = 0; k < 3; ++k) {
-    state->position[k] = position[k][lane];
-    state->linear_momentum[k] = linear_momentum[k][lane];
-    state->angular_momentum[k] = angular_momentum[k][lane];
-  }
-  for (int k = 0; k < 4; ++k) state->orientation.coeffs()[k] = orientation[k][lane];
 }
 
 namespace {

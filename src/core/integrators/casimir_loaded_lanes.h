@@ -33,6 +33,8 @@ struct LoadedLanes : LaneBodies {
   double moment[9][kLanes];        // C_P = C R_BP, row-major
   double linear_damping[kLanes];   // [1/s]
   double angular_damping[kLanes];  // [1/s]
+  // max_k 1/λ_k [1/(kg m²)], for StateFault.
+  double inverse_moment_max[kLanes];
   // The HeldLoads::PrincipalParts::stamp of the load parts each lane holds;
   // 0: none (stamps start at 1).
   std::uint64_t load_stamp[kLanes] = {};
@@ -49,7 +51,40 @@ struct LoadedLanes : LaneBodies {
   void FillIdle(std::size_t first);
   // Writes the lane's state to `state`.
   void Store(std::size_t lane, BodyState* state) const;
+  // StateFault of every lane's state: CheckState's bounds (its sum of the
+  // components in another order, which tells only where the sum overflows).
+  void Faults(BodyFault fault[kLanes]) const;
 };
+
+inline void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const BodyState& state,
+                              const HeldLoads& loads) {
+  LaneBodies::Load(lane, model, state);
+  inverse_moment_max[lane] = model.inverse_principal_moments().maxCoeff();
+  body_axes = body_axes || loads.has_body_axes();
+  damped = damped || loads.has_damping();
+  const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
+  if (load_stamp[lane] == principal.stamp) return;
+  load_stamp[lane] = principal.stamp;
+  const Damping damping = loads.damping();
+  linear_damping[lane] = damping.linear_per_s;
+  angular_damping[lane] = damping.angular_per_s;
+  for (int k = 0; k < 3; ++k) {
+    force_world[k][lane] = loads.force_world()[k];
+    force_principal[k][lane] = principal.force_body[k];
+    torque_world[k][lane] = loads.torque_world()[k];
+    torque_principal[k][lane] = principal.torque_body[k];
+    for (int j = 0; j < 3; ++j) moment[3 * k + j][lane] = principal.force_moment(k, j);
+  }
+}
+
+inline void LoadedLanes::Store(std::size_t lane, BodyState* state) const {
+  for (int k = 0; k < 3; ++k) {
+    state->position[k] = position[k][lane];
+    state->linear_momentum[k] = linear_momentum[k][lane];
+    state->angular_momentum[k] = angular_momentum[k][lane];
+  }
+  for (int k = 0; k < 4; ++k) state->orientation.coeffs()[k] = orientation[k][lane];
+}
 
 namespace lanes {
 
@@ -152,11 +187,12 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
   FreeLaneQueues pulled(free_lanes);  // bodies under a constant force
   const auto flush_pulled = [&](FreeLaneQueue& queue) {
     queue.Flush(dt_s, [&](std::size_t l, std::size_t body) {
-      BodyState& state = batch.states[body];
-      queue.lanes.Store(l, &state);
+      BodyState next = batch.states[body];
+      queue.lanes.Store(l, &next);
       const Eigen::Vector3d impulse = dt_s * batch.loads[body].force_world();
-      state.position += (0.5 * dt_s * batch.models[body].inverse_mass()) * impulse;
-      state.linear_momentum += impulse;
+      next.position += (0.5 * dt_s * batch.models[body].inverse_mass()) * impulse;
+      next.linear_momentum += impulse;
+      CommitStep(batch, body, next);
     });
   };
   // Bodies under a load that depends on the orientation, in groups by their
@@ -177,7 +213,16 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     const std::size_t count = turned_count[group];
     if (count < kLanes) lanes.FillIdle(count);
     (group < kWideGroups ? loaded_lanes.series : loaded_lanes.wide)(dt_s, &lanes);
-    for (std::size_t l = 0; l < count; ++l) lanes.Store(l, &batch.states[turned_bodies[group][l]]);
+    BodyFault fault[kLanes] = {};
+    if (batch.faults != nullptr) lanes.Faults(fault);
+    for (std::size_t l = 0; l < count; ++l) {
+      const std::size_t body = turned_bodies[group][l];
+      if (fault[l] == BodyFault::kNone) {
+        lanes.Store(l, &batch.states[body]);
+      } else {
+        batch.faults[body] = fault[l];  // CommitStep's bounds, checked in the lanes
+      }
+    }
     turned[group] = nullptr;
     turned_count[group] = 0;
   };
@@ -204,7 +249,9 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     } else if (damping_fits && FitsLoadedWideLanes(model, state, load, dt_s, reach)) {
       turn_in(kWideGroups);
     } else {
-      step_one(model, load, dt_s, &state);
+      BodyState next = state;
+      step_one(model, load, dt_s, &next);
+      CommitStep(batch, body, next);
     }
   }
   pulled.FlushAll(flush_pulled);

@@ -38,18 +38,19 @@ void ExactFreeIntegrator::StepLoaded(const BodyBatch& batch, double dt_s) const 
   for (const std::size_t body : batch) {
     const BodyModel& model = batch.models[body];
     const HeldLoads& load = batch.loads[body];
-    BodyState& state = batch.states[body];
+    BodyState state = batch.states[body];
     const Damping damping = load.damping();
     // A torque or angular damping changes L, and with it the whole flow:
     // the uncached step builds it once, as a kept flow would.
     if (batch.free_flows == nullptr || load.has_torque() || damping.angular_per_s != 0.0) {
       Step(model, &load, dt_s, &state);
-      continue;
+    } else {
+      Kick(load, 0.0, 0.5 * dt_s, &state);
+      DampedDrift(model.inverse_mass(), damping.linear_per_s, dt_s, &state);
+      state.orientation = batch.free_flows[body].Advance(model, state, dt_s);
+      Kick(load, dt_s, 0.5 * dt_s, &state);
     }
-    Kick(load, 0.0, 0.5 * dt_s, &state);
-    DampedDrift(model.inverse_mass(), damping.linear_per_s, dt_s, &state);
-    state.orientation = batch.free_flows[body].Advance(model, state, dt_s);
-    Kick(load, dt_s, 0.5 * dt_s, &state);
+    CommitStep(batch, body, state);
   }
 }
 
