@@ -58,26 +58,18 @@ namespace {
 // frame throughout: kick, then three times drift, A B A, the rotation about L
 // and a kick, with neighbouring half kicks merged (they act at the same pose
 // and time). kBodyAxes: as for lanes::LoadOf. kDamped: whether any lane is
-// damped; `decays` then holds each lane's DecayOver for the outer and the
-// inner sub-step, which the drift and the rotation apply as DampedDrift and
+// damped; `decays` then holds each lane's DecayOver for the three sub-steps,
+// which the drift and the rotation apply as DampedDrift and
 // DampedCasimirRotation do. kAngles: the series, or SinCosWide for the axis
 // flows and the rotation about L. q stays a unit quaternion to ~1e-16
 // through the products, so it is normalised once, at the end.
-struct LaneDecays {
-  // [sub-step: outer, inner][lane]
-  double linear_factor[2][kLanes], linear_elapsed_s[2][kLanes];
-  double angular_factor[2][kLanes], angular_elapsed_s[2][kLanes];
-};
-
 template <bool kBodyAxes, bool kDamped, Angles kAngles>
-inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecays& decays,
+inline __attribute__((always_inline)) void LoadedStep4(const std::array<double, 3>& substeps,
+                                                       const FlowDecays<3>& decays,
                                                        LoadedLanes* lanes) {
   LoadedLanes& b = *lanes;
-  const double outer = kYoshidaOuterWeight * h;
-  const double inner = kYoshidaInnerWeight * h;
-  const double substeps[3] = {outer, inner, outer};
-  const int substep_kind[3] = {0, 1, 0};  // index into LaneDecays
-  const double kicks[4] = {0.5 * outer, 0.5 * (outer + inner), 0.5 * (inner + outer), 0.5 * outer};
+  const double kicks[4] = {0.5 * substeps[0], 0.5 * (substeps[0] + substeps[1]),
+                           0.5 * (substeps[1] + substeps[2]), 0.5 * substeps[2]};
   for (std::size_t l = 0; l < kLanes; ++l) {
     const Quaternion axes{b.principal_axes[0][l], b.principal_axes[1][l], b.principal_axes[2][l],
                           b.principal_axes[3][l]};
@@ -94,27 +86,26 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
     const double inverse_mass = 1.0 / b.mass[l];
     const double a1 = b.axis1[l], a3 = b.axis3[l], casimir = b.casimir[l];
 
-    lanes::Kick<kBodyAxes>(load, q, kicks[0], p, L_W);
+    double m[3];  // Π = R_WPᵀ L
+    lanes::Kick<kBodyAxes>(load, q, kicks[0], p, L_W, m);
     for (int s = 0; s < 3; ++s) {
       double drift_s = substeps[s], spin_s = substeps[s];
       if constexpr (kDamped) {
-        drift_s = decays.linear_elapsed_s[substep_kind[s]][l];
-        spin_s = decays.angular_elapsed_s[substep_kind[s]][l];
+        drift_s = decays.linear_elapsed_s[s][l];
+        spin_s = decays.angular_elapsed_s[s][l];
       }
       for (int k = 0; k < 3; ++k) x[k] += drift_s * inverse_mass * p[k];
-      double m[3];  // Π = R_WPᵀ L
-      lanes::RotateInverse(q, L_W[0], L_W[1], L_W[2], m);
       lanes::Axis1Flow<kAngles>(a1, 0.5 * spin_s, m, &q);
       lanes::Axis3Flow<kAngles>(a3, spin_s, m, &q);
       lanes::Axis1Flow<kAngles>(a1, 0.5 * spin_s, m, &q);
       lanes::TurnAboutMomentum<kAngles>(spin_s * casimir, L_W, &q);
       if constexpr (kDamped) {
         for (int k = 0; k < 3; ++k) {
-          p[k] *= decays.linear_factor[substep_kind[s]][l];
-          L_W[k] *= decays.angular_factor[substep_kind[s]][l];
+          p[k] *= decays.linear_factor[s][l];
+          L_W[k] *= decays.angular_factor[s][l];
         }
       }
-      lanes::Kick<kBodyAxes>(load, q, kicks[s + 1], p, L_W);
+      lanes::Kick<kBodyAxes>(load, q, kicks[s + 1], p, L_W, m);
     }
 
     q = lanes::Normalized(Multiply(q, Quaternion{-axes.x, -axes.y, -axes.z, axes.w}));
@@ -130,35 +121,16 @@ inline __attribute__((always_inline)) void LoadedStep4(double h, const LaneDecay
   }
 }
 
-// The kernel instance for the lanes' flags, with the damping's exponentials
-// taken outside the lane loop, which then stays free of calls.
 template <Angles kAngles>
 inline __attribute__((always_inline)) void LoadedStep4For(double h, LoadedLanes* lanes) {
-  LaneDecays decays;
-  if (lanes->damped) {
-    const double substeps[2] = {kYoshidaOuterWeight * h, kYoshidaInnerWeight * h};
-    for (int s = 0; s < 2; ++s) {
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        const Decay linear = DecayOver(lanes->linear_damping[l], substeps[s]);
-        const Decay angular = DecayOver(lanes->angular_damping[l], substeps[s]);
-        decays.linear_factor[s][l] = linear.factor;
-        decays.linear_elapsed_s[s][l] = linear.elapsed_s;
-        decays.angular_factor[s][l] = angular.factor;
-        decays.angular_elapsed_s[s][l] = angular.elapsed_s;
-      }
-    }
-    if (lanes->body_axes) {
-      LoadedStep4<true, true, kAngles>(h, decays, lanes);
-    } else {
-      LoadedStep4<false, true, kAngles>(h, decays, lanes);
-    }
-  } else if (lanes->body_axes) {
-    LoadedStep4<true, false, kAngles>(h, decays, lanes);
-  } else {
-    LoadedStep4<false, false, kAngles>(h, decays, lanes);
-  }
-  lanes->body_axes = false;
-  lanes->damped = false;
+  const double outer = kYoshidaOuterWeight * h;
+  const std::array<double, 3> substeps = {outer, kYoshidaInnerWeight * h, outer};
+  StepForFlags(
+      substeps, lanes,
+      [&](auto body_axes, auto damped, const FlowDecays<3>& decays) __attribute__((always_inline)) {
+        LoadedStep4<decltype(body_axes)::value, decltype(damped)::value, kAngles>(substeps, decays,
+                                                                                  lanes);
+      });
 }
 
 }  // namespace

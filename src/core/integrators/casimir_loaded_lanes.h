@@ -8,9 +8,11 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <type_traits>
 #include <vector>
 
 #include "casimir_free_lanes.h"
@@ -19,6 +21,7 @@
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/lane_cache.h"
+#include "step_parts.h"
 
 namespace rigid_body_sim::core {
 
@@ -110,10 +113,12 @@ inline __attribute__((always_inline)) LaneLoad LoadOf(const LoadedLanes& b, std:
   return load;
 }
 
-// p += w F, L += w τ at the orientation q = R_WP of the principal frame.
+// p += w F, L += w τ at the orientation q = R_WP of the principal frame,
+// and Π = R_WPᵀ L after it, from the kick's R_WP (cheaper than from q).
 template <bool kBodyAxes>
 inline __attribute__((always_inline)) void Kick(const LaneLoad& load, const Quaternion& q, double w,
-                                                double p[3], double L_W[3]) {
+                                                double p[3], double L_W[3],
+                                                double body_momentum[3]) {
   double R_WP[9];
   RotationMatrix(q, R_WP);
   // M = C_P R_WPᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
@@ -132,6 +137,9 @@ inline __attribute__((always_inline)) void Kick(const LaneLoad& load, const Quat
     }
     p[k] += w * force;
     L_W[k] += w * torque;
+  }
+  for (int k = 0; k < 3; ++k) {
+    body_momentum[k] = R_WP[k] * L_W[0] + R_WP[3 + k] * L_W[1] + R_WP[6 + k] * L_W[2];
   }
 }
 
@@ -155,6 +163,47 @@ inline __attribute__((always_inline)) void TurnAboutMomentum(double angle_per_mo
 }
 
 }  // namespace lanes
+
+// Each lane's DecayOver for each free flow of a step.
+template <std::size_t flows>
+struct FlowDecays {
+  // [flow][lane]
+  double linear_factor[flows][kLanes], linear_elapsed_s[flows][kLanes];
+  double angular_factor[flows][kLanes], angular_elapsed_s[flows][kLanes];
+};
+
+// step(body_axes, damped, decays), the flags as std::bool_constant: the
+// kernel instance for the lanes' flags, with the damping's exponentials for
+// free flows of flow_s [s] taken outside its lane loop, which then stays
+// free of calls. Clears body_axes and damped.
+template <std::size_t flows, typename Step>
+inline __attribute__((always_inline)) void StepForFlags(const std::array<double, flows>& flow_s,
+                                                        LoadedLanes* lanes, Step step) {
+  FlowDecays<flows> decays;
+  if (lanes->damped) {
+    for (std::size_t i = 0; i < flows; ++i) {
+      for (std::size_t l = 0; l < kLanes; ++l) {
+        const Decay linear = DecayOver(lanes->linear_damping[l], flow_s[i]);
+        const Decay angular = DecayOver(lanes->angular_damping[l], flow_s[i]);
+        decays.linear_factor[i][l] = linear.factor;
+        decays.linear_elapsed_s[i][l] = linear.elapsed_s;
+        decays.angular_factor[i][l] = angular.factor;
+        decays.angular_elapsed_s[i][l] = angular.elapsed_s;
+      }
+    }
+    if (lanes->body_axes) {
+      step(std::true_type{}, std::true_type{}, decays);
+    } else {
+      step(std::false_type{}, std::true_type{}, decays);
+    }
+  } else if (lanes->body_axes) {
+    step(std::true_type{}, std::false_type{}, decays);
+  } else {
+    step(std::false_type{}, std::false_type{}, decays);
+  }
+  lanes->body_axes = false;
+  lanes->damped = false;
+}
 
 // Advances every lane by h; the bodies in use must fit (FitsLoadedLanes,
 // DampingFitsLoadedLanes). Clears body_axes and damped.

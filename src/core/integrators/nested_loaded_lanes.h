@@ -6,6 +6,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cstddef>
 
 #include "casimir_loaded_lanes.h"
@@ -33,14 +34,6 @@ constexpr LoadedLanesReach NestedLanesReach(const KickSplitting<m>& outer) {
   }
   return {kDampedStretch * longest_flow, kick_sum};
 }
-
-// Each lane's DecayOver for each free flow of the outer composition.
-template <std::size_t flows>
-struct FlowDecays {
-  // [flow][lane]
-  double linear_factor[flows][kLanes], linear_elapsed_s[flows][kLanes];
-  double angular_factor[flows][kLanes], angular_elapsed_s[flows][kLanes];
-};
 
 // The lanes' state during a step, in structure-of-arrays form as
 // LoadedLanes: the principal frame's orientation q = R_WP and Π = R_WPᵀ L
@@ -73,7 +66,7 @@ inline __attribute__((always_inline)) void TurnLanes(NestedLaneState* s, Turn tu
 // The step. kBodyAxes as for lanes::LoadOf; kDamped: whether any lane is
 // damped (then `decays` holds each lane's decays, which the free flows apply
 // as NestedStep does); kAngles: the series or SinCosWide. Π is found again
-// after each kick; q stays a unit quaternion to ~1e-16 through the products
+// after each kick, from its R_WP; q stays a unit quaternion to ~1e-16 through the products
 // and is normalised once, at the end.
 template <bool kBodyAxes, bool kDamped, lanes::Angles kAngles, std::size_t m, std::size_t n>
 inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<m>& outer,
@@ -140,9 +133,9 @@ inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<
       const Quaternion q{s.q[0][l], s.q[1][l], s.q[2][l], s.q[3][l]};
       double p[3] = {s.p[0][l], s.p[1][l], s.p[2][l]};
       double L_W[3] = {s.L_W[0][l], s.L_W[1][l], s.L_W[2][l]};
-      lanes::Kick<kBodyAxes>(lanes::LoadOf<kBodyAxes>(b, l), q, outer.kick[i] * h, p, L_W);
       double body_momentum[3];
-      lanes::RotateInverse(q, L_W[0], L_W[1], L_W[2], body_momentum);
+      lanes::Kick<kBodyAxes>(lanes::LoadOf<kBodyAxes>(b, l), q, outer.kick[i] * h, p, L_W,
+                             body_momentum);
       for (int k = 0; k < 3; ++k) {
         s.p[k][l] = p[k];
         s.L_W[k][l] = L_W[k];
@@ -167,38 +160,22 @@ inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<
   }
 }
 
-// Advances every lane by h through the composition: the kernel instance for
-// the lanes' flags, with the damping's exponentials taken outside the lane
-// loop. The bodies in use must fit (FitsLoadedLanes with the composition's
+// Advances every lane by h through the composition (StepForFlags). The
+// bodies in use must fit (FitsLoadedLanes with the composition's
 // LoadedLanesReach, DampingFitsLoadedLanes). Clears body_axes and damped.
 template <lanes::Angles kAngles, std::size_t m, std::size_t n>
 inline __attribute__((always_inline)) void NestedLoadedLanes(const KickSplitting<m>& outer,
                                                              const AxisSplitting<n>& inner,
                                                              double h, LoadedLanes* lanes) {
-  FlowDecays<m + 1> decays;
-  if (lanes->damped) {
-    for (std::size_t i = 0; i <= m; ++i) {
-      for (std::size_t l = 0; l < kLanes; ++l) {
-        const Decay linear = DecayOver(lanes->linear_damping[l], outer.drift[i] * h);
-        const Decay angular = DecayOver(lanes->angular_damping[l], outer.drift[i] * h);
-        decays.linear_factor[i][l] = linear.factor;
-        decays.linear_elapsed_s[i][l] = linear.elapsed_s;
-        decays.angular_factor[i][l] = angular.factor;
-        decays.angular_elapsed_s[i][l] = angular.elapsed_s;
-      }
-    }
-    if (lanes->body_axes) {
-      NestedLoadedStep<true, true, kAngles>(outer, inner, h, decays, lanes);
-    } else {
-      NestedLoadedStep<false, true, kAngles>(outer, inner, h, decays, lanes);
-    }
-  } else if (lanes->body_axes) {
-    NestedLoadedStep<true, false, kAngles>(outer, inner, h, decays, lanes);
-  } else {
-    NestedLoadedStep<false, false, kAngles>(outer, inner, h, decays, lanes);
-  }
-  lanes->body_axes = false;
-  lanes->damped = false;
+  std::array<double, m + 1> flow_s;
+  for (std::size_t i = 0; i <= m; ++i) flow_s[i] = outer.drift[i] * h;
+  StepForFlags(
+      flow_s, lanes,
+      [&](auto body_axes, auto damped, const FlowDecays<m + 1>& decays)
+          __attribute__((always_inline)) {
+            NestedLoadedStep<decltype(body_axes)::value, decltype(damped)::value, kAngles>(
+                outer, inner, h, decays, lanes);
+          });
 }
 
 }  // namespace rigid_body_sim::core
