@@ -38,20 +38,6 @@ void LoadedLanes::FillIdle(std::size_t first) {
   }
 }
 
-RBS_SIMD_CLONES void LoadedLanes::Faults(BodyFault fault[kLanes]) const {
-  for (std::size_t l = 0; l < kLanes; ++l) {
-    double component_sum = 0.0, momentum_sq = 0.0, angular_momentum_sq = 0.0;
-    for (int k = 0; k < 3; ++k) {
-      component_sum += position[k][l] + linear_momentum[k][l] + angular_momentum[k][l];
-      momentum_sq += linear_momentum[k][l] * linear_momentum[k][l];
-      angular_momentum_sq += angular_momentum[k][l] * angular_momentum[k][l];
-    }
-    for (int k = 0; k < 4; ++k) component_sum += orientation[k][l];
-    fault[l] =
-        StateFault(component_sum, momentum_sq, angular_momentum_sq, mass[l], inverse_moment_max[l]);
-  }
-}
-
 namespace {
 
 // The loaded Step of casimir_splitting4.cpp, lane by lane, in the principal
@@ -108,16 +94,9 @@ inline __attribute__((always_inline)) void LoadedStep4(const std::array<double, 
       lanes::Kick<kBodyAxes>(load, q, kicks[s + 1], p, L_W, m);
     }
 
-    q = lanes::Normalized(Multiply(q, Quaternion{-axes.x, -axes.y, -axes.z, axes.w}));
-    for (int k = 0; k < 3; ++k) {
-      b.position[k][l] = x[k];
-      b.linear_momentum[k][l] = p[k];
-      b.angular_momentum[k][l] = L_W[k];
-    }
-    b.orientation[0][l] = q.x;
-    b.orientation[1][l] = q.y;
-    b.orientation[2][l] = q.z;
-    b.orientation[3][l] = q.w;
+    lanes::StoreStep(l, x, p, L_W,
+                     lanes::Normalized(Multiply(q, Quaternion{-axes.x, -axes.y, -axes.z, axes.w})),
+                     lanes);
   }
 }
 

@@ -17,6 +17,7 @@
 
 #include "casimir_free_lanes.h"
 #include "casimir_step.h"
+#include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
@@ -38,6 +39,8 @@ struct LoadedLanes : LaneBodies {
   double angular_damping[kLanes];  // [1/s]
   // max_k 1/λ_k [1/(kg m²)], for StateFault.
   double inverse_moment_max[kLanes];
+  // StateFault of each lane's state after the last step (lanes::FindFaults).
+  BodyFault fault[kLanes];
   // The HeldLoads::PrincipalParts::stamp of the load parts each lane holds;
   // 0: none (stamps start at 1).
   std::uint64_t load_stamp[kLanes] = {};
@@ -54,9 +57,6 @@ struct LoadedLanes : LaneBodies {
   void FillIdle(std::size_t first);
   // Writes the lane's state to `state`.
   void Store(std::size_t lane, BodyState* state) const;
-  // StateFault of every lane's state: CheckState's bounds (its sum of the
-  // components in another order, which tells only where the sum overflows).
-  void Faults(BodyFault fault[kLanes]) const;
 };
 
 inline void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const BodyState& state,
@@ -162,6 +162,41 @@ inline __attribute__((always_inline)) void TurnAboutMomentum(double angle_per_mo
   }
 }
 
+// Writes lane l's state after a step, x, p, L and q = R_WB, to the lanes.
+inline __attribute__((always_inline)) void StoreStep(std::size_t l, const double x[3],
+                                                     const double p[3], const double L_W[3],
+                                                     const Quaternion& q, LoadedLanes* lanes) {
+  LoadedLanes& b = *lanes;
+  for (int k = 0; k < 3; ++k) {
+    b.position[k][l] = x[k];
+    b.linear_momentum[k][l] = p[k];
+    b.angular_momentum[k][l] = L_W[k];
+  }
+  b.orientation[0][l] = q.x;
+  b.orientation[1][l] = q.y;
+  b.orientation[2][l] = q.z;
+  b.orientation[3][l] = q.w;
+}
+
+// Sets each lane's StateFault: CheckState's bounds (its sum of the
+// components in another order, which tells only where the sum overflows).
+// A loop of its own: in a kernel's lane loop, the store of the fault keeps
+// the compiler from vectorising it.
+inline __attribute__((always_inline)) void FindFaults(LoadedLanes* lanes) {
+  LoadedLanes& b = *lanes;
+  for (std::size_t l = 0; l < kLanes; ++l) {
+    double component_sum = 0.0, momentum_sq = 0.0, angular_momentum_sq = 0.0;
+    for (int k = 0; k < 3; ++k) {
+      component_sum += b.position[k][l] + b.linear_momentum[k][l] + b.angular_momentum[k][l];
+      momentum_sq += b.linear_momentum[k][l] * b.linear_momentum[k][l];
+      angular_momentum_sq += b.angular_momentum[k][l] * b.angular_momentum[k][l];
+    }
+    for (int k = 0; k < 4; ++k) component_sum += b.orientation[k][l];
+    b.fault[l] = StateFault(component_sum, momentum_sq, angular_momentum_sq, b.mass[l],
+                            b.inverse_moment_max[l]);
+  }
+}
+
 }  // namespace lanes
 
 // Each lane's DecayOver for each free flow of a step.
@@ -175,7 +210,7 @@ struct FlowDecays {
 // step(body_axes, damped, decays), the flags as std::bool_constant: the
 // kernel instance for the lanes' flags, with the damping's exponentials for
 // free flows of flow_s [s] taken outside its lane loop, which then stays
-// free of calls. Clears body_axes and damped.
+// free of calls; then the lanes' faults. Clears body_axes and damped.
 template <std::size_t flows, typename Step>
 inline __attribute__((always_inline)) void StepForFlags(const std::array<double, flows>& flow_s,
                                                         LoadedLanes* lanes, Step step) {
@@ -201,6 +236,7 @@ inline __attribute__((always_inline)) void StepForFlags(const std::array<double,
   } else {
     step(std::false_type{}, std::false_type{}, decays);
   }
+  lanes::FindFaults(lanes);
   lanes->body_axes = false;
   lanes->damped = false;
 }
@@ -262,14 +298,12 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     const std::size_t count = turned_count[group];
     if (count < kLanes) lanes.FillIdle(count);
     (group < kWideGroups ? loaded_lanes.series : loaded_lanes.wide)(dt_s, &lanes);
-    BodyFault fault[kLanes] = {};
-    if (batch.faults != nullptr) lanes.Faults(fault);
     for (std::size_t l = 0; l < count; ++l) {
       const std::size_t body = turned_bodies[group][l];
-      if (fault[l] == BodyFault::kNone) {
+      if (batch.faults == nullptr || lanes.fault[l] == BodyFault::kNone) {
         lanes.Store(l, &batch.states[body]);
       } else {
-        batch.faults[body] = fault[l];  // CommitStep's bounds, checked in the lanes
+        batch.faults[body] = lanes.fault[l];  // CommitStep's bounds, checked in the lanes
       }
     }
     turned[group] = nullptr;

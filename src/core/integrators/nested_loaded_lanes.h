@@ -144,19 +144,15 @@ inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<
     }
   }
   for (std::size_t l = 0; l < kLanes; ++l) {
-    const Quaternion q =
+    const double x[3] = {s.x[0][l], s.x[1][l], s.x[2][l]};
+    const double p[3] = {s.p[0][l], s.p[1][l], s.p[2][l]};
+    const double L_W[3] = {s.L_W[0][l], s.L_W[1][l], s.L_W[2][l]};
+    lanes::StoreStep(
+        l, x, p, L_W,
         lanes::Normalized(Multiply(Quaternion{s.q[0][l], s.q[1][l], s.q[2][l], s.q[3][l]},
                                    Quaternion{-b.principal_axes[0][l], -b.principal_axes[1][l],
-                                              -b.principal_axes[2][l], b.principal_axes[3][l]}));
-    for (int k = 0; k < 3; ++k) {
-      b.position[k][l] = s.x[k][l];
-      b.linear_momentum[k][l] = s.p[k][l];
-      b.angular_momentum[k][l] = s.L_W[k][l];
-    }
-    b.orientation[0][l] = q.x;
-    b.orientation[1][l] = q.y;
-    b.orientation[2][l] = q.z;
-    b.orientation[3][l] = q.w;
+                                              -b.principal_axes[2][l], b.principal_axes[3][l]})),
+        lanes);
   }
 }
 
