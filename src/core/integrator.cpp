@@ -24,7 +24,11 @@ std::unique_ptr<Integrator> Make() {
 }  // namespace
 
 void Integrator::StepFree(const BodyBatch& batch, double dt_s) const {
-  for (const std::size_t body : batch) Step(batch.models[body], nullptr, dt_s, &batch.states[body]);
+  for (const std::size_t body : batch) {
+    BodyState next = batch.states[body];
+    Step(batch.models[body], nullptr, dt_s, &next);
+    CommitStep(batch, body, next);
+  }
 }
 
 void Integrator::StepLoaded(const BodyBatch& batch, double dt_s) const {

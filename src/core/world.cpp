@@ -58,7 +58,6 @@ World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_state
   shares_.resize(options_.threads);
   for (Share& share : shares_) {
     share.free_batch.reserve(kBatch);
-    share.free_batch_before.reserve(kBatch);
     share.loaded_batch.reserve(kBatch);
     share.substep_batches.reserve(kSubstepBatches);
   }
@@ -182,11 +181,12 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       case StepClass::kBatched:
         if (load != nullptr) {
           share->loaded_batch.push_back(i);
-          if (share->loaded_batch.size() == kBatch) StepLoadedBatch(share);
+          if (share->loaded_batch.size() == kBatch)
+            StepBatch(&Integrator::StepLoaded, &share->loaded_batch, share);
         } else {
           share->free_batch.push_back(i);
-          share->free_batch_before.push_back({state.position, state.orientation});
-          if (share->free_batch.size() == kBatch) StepFreeBatch(share);
+          if (share->free_batch.size() == kBatch)
+            StepBatch(&Integrator::StepFree, &share->free_batch, share);
         }
         break;
       case StepClass::kSubsteps: {
@@ -207,8 +207,8 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       }
     }
   }
-  StepFreeBatch(share);
-  StepLoadedBatch(share);
+  StepBatch(&Integrator::StepFree, &share->free_batch, share);
+  StepBatch(&Integrator::StepLoaded, &share->loaded_batch, share);
   for (Share::SubstepBatch& batch : share->substep_batches) StepSubstepBatch(&batch, share);
 }
 
@@ -287,32 +287,16 @@ BodyBatch World::Batch(const std::vector<std::size_t>& indices, LaneCache* cache
           cache};
 }
 
-void World::StepLoadedBatch(Share* share) {
-  if (share->loaded_batch.empty()) return;
-  BodyBatch batch = Batch(share->loaded_batch, &share->lane_cache);
+void World::StepBatch(BatchStep step, std::vector<std::size_t>* bodies, Share* share) {
+  if (bodies->empty()) return;
+  BodyBatch batch = Batch(*bodies, &share->lane_cache);
   std::vector<BodyFault>& faults = bodies_.hot().faults;
   batch.faults = faults.data();
-  integrator_->StepLoaded(batch, options_.dt_s);
-  for (const std::size_t index : share->loaded_batch) {
+  (integrator_.get()->*step)(batch, options_.dt_s);
+  for (const std::size_t index : *bodies) {
     if (faults[index] != BodyFault::kNone) ++share->frozen;
   }
-  share->loaded_batch.clear();
-}
-
-void World::StepFreeBatch(Share* share) {
-  if (share->free_batch.empty()) return;
-  integrator_->StepFree(Batch(share->free_batch, &share->lane_cache), options_.dt_s);
-  for (std::size_t k = 0; k < share->free_batch.size(); ++k) {
-    BodyState& state = bodies_.hot().states[share->free_batch[k]];
-    const BodyFault fault = CheckPose(state);
-    if (fault != BodyFault::kNone) {
-      state.position = share->free_batch_before[k].position;
-      state.orientation = share->free_batch_before[k].orientation;
-      Freeze(share->free_batch[k], fault, share);
-    }
-  }
-  share->free_batch.clear();
-  share->free_batch_before.clear();
+  bodies->clear();
 }
 
 void World::FinishStep(std::size_t index, const BodyState& before, Share* share) {

@@ -630,5 +630,47 @@ TEST_P(EveryScheme, ABadBodyInABatchIsFrozenAloneAndTheOthersAreUntouched) {
   }
 }
 
+TEST_P(EveryScheme, ABatchThatRecordsFaultsKeepsABodyPastABoundAndStepsTheOthers) {
+  // Body 4's position components sum past the largest double, so its state
+  // breaks CheckState after any step. With BodyBatch::faults, StepFree and
+  // StepLoaded leave it as it was and record kNonFinite; the others step as
+  // in the same batch without faults, bit for bit. Body 11 takes the scalar
+  // step (too fast for the lanes).
+  const World world = MakeFreeWorld(GetParam(), 1e-3);
+  std::vector<HeldLoads> loads(world.size());
+  std::vector<std::size_t> indices;
+  for (std::size_t i = 0; i < world.size(); ++i) {
+    loads[i].AddWorldForce({0.5, -1.0, 0.25}, world.model(i).particle_offsets()[0]);
+    indices.push_back(i);
+  }
+  const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
+  for (const bool loaded : {false, true}) {
+    SCOPED_TRACE(loaded ? "StepLoaded" : "StepFree");
+    std::vector<BodyState> before = world.states();
+    before[4].position = {1e308, 1e308, 0.0};
+    std::vector<BodyState> states = before, unchecked = before;
+    std::vector<BodyFault> faults(world.size(), BodyFault::kNone);
+    BodyBatch batch = Batch(world, loads, indices, &states);
+    batch.faults = faults.data();
+    const BodyBatch unchecked_batch = Batch(world, loads, indices, &unchecked);
+    if (loaded) {
+      integrator->StepLoaded(batch, 1e-3);
+      integrator->StepLoaded(unchecked_batch, 1e-3);
+    } else {
+      integrator->StepFree(batch, 1e-3);
+      integrator->StepFree(unchecked_batch, 1e-3);
+    }
+    EXPECT_EQ(faults[4], BodyFault::kNonFinite);
+    EXPECT_TRUE(test::SameBits(states[4], before[4]));
+    EXPECT_FALSE(test::SameBits(unchecked[4], before[4]));  // the step did move it
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      if (i == 4) continue;
+      SCOPED_TRACE("body " + std::to_string(i));
+      EXPECT_EQ(faults[i], BodyFault::kNone);
+      EXPECT_TRUE(test::SameBits(states[i], unchecked[i]));
+      EXPECT_FALSE(test::SameBits(states[i], before[i]));
+    }
+  }
+}
 }  // namespace
 }  // namespace rigid_body_sim::core

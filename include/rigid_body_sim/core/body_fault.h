@@ -47,12 +47,5 @@ inline BodyFault CheckState(const BodyModel& model, const BodyState& state) {
                     state.linear_momentum.squaredNorm(), state.angular_momentum.squaredNorm(),
                     model.mass(), model.inverse_principal_moments().maxCoeff());
 }
-// The part of CheckState a free step can break (it changes x and q alone):
-// kNonFinite if x or q is not finite, else kNone. Inline: it runs for every
-// free body every step.
-inline BodyFault CheckPose(const BodyState& state) {
-  const double sum = state.position.sum() + state.orientation.coeffs().sum();
-  return std::isfinite(sum) ? BodyFault::kNone : BodyFault::kNonFinite;
-}
 
 }  // namespace rigid_body_sim::core

@@ -32,10 +32,10 @@ struct BodyBatch {
   // The calling thread's cache (lane_cache.h), kept by the World from step
   // to step; null: none.
   LaneCache* lane_cache = nullptr;
-  // Where Integrator::StepLoaded records a body whose step breaks a
-  // CheckState bound, indexed like states; such a body keeps its state from
-  // before the step, so the caller needs no copy of it. Null: the caller
-  // checks.
+  // Where Integrator::StepFree and StepLoaded record a body whose step
+  // breaks a CheckState bound, indexed like states; such a body keeps its
+  // state from before the step, so the caller needs no copy of it. Null: the
+  // caller checks.
   BodyFault* faults = nullptr;
 
   const std::size_t* begin() const { return indices; }
@@ -76,7 +76,8 @@ class Integrator {
   // Advances the free bodies of `batch` (each full rank, with neither force
   // nor torque) by dt_s, as Step with a null load would. A scheme may step
   // several at a time in SIMD lanes; this default steps them one by one.
-  // Checking the new states is the caller's.
+  // With BodyBatch::faults each new state passes CommitStep; without,
+  // checking them is the caller's.
   virtual void StepFree(const BodyBatch& batch, double dt_s) const;
   // Advances the full-rank bodies of `batch` under their held loads by dt_s,
   // as Step would, several at a time where a scheme can; this default steps

@@ -166,22 +166,16 @@ class World {
   bool record_next_step_ = false;
   bool last_step_recorded_ = false;
 
-  struct Pose {
-    Eigen::Vector3d position;
-    Eigen::Quaterniond orientation;
-  };
   // One thread's share of a Step: its batches, and what it counts over the
   // blocks of bodies it takes, added to the World's counts once every block
   // is done. Aligned to a cache line so that the threads' counts do not
   // share one.
   struct alignas(64) Share {
     // Free bodies (full rank, moving, no load) of this step, stepped in
-    // batches through Integrator::StepFree, and their poses before it (a free
-    // step changes nothing else).
+    // batches through Integrator::StepFree (StepBatch).
     std::vector<std::size_t> free_batch;
-    std::vector<Pose> free_batch_before;
     // Loaded full-rank bodies that need no substeps, batched the same way
-    // through Integrator::StepLoaded, which checks them (BodyBatch::faults).
+    // through Integrator::StepLoaded.
     std::vector<std::size_t> loaded_batch;
     // Full-rank bodies that need n > 1 substeps, batched by n and by whether
     // they are loaded: a batch takes n steps of dt/n through StepFree or
@@ -227,13 +221,12 @@ class World {
   void PrepareBody(std::size_t index);
   std::uint32_t SubstepsFor(const BodyModel& model, const HeldLoads* load,
                             const BodyState& state) const;
-  // Steps the bodies in share->free_batch through StepFree, checks each, and
-  // empties it.
-  void StepFreeBatch(Share* share);
-  // The same for share->loaded_batch through StepLoaded, which checks each
-  // body before it writes the state back: a loaded step changes the whole
-  // state, which a copy before the step would cost.
-  void StepLoadedBatch(Share* share);
+  using BatchStep = void (Integrator::*)(const BodyBatch& batch, double dt_s) const;
+  // Steps `bodies` by dt through `step` (StepFree or StepLoaded), which
+  // checks each body before it writes its state back (BodyBatch::faults):
+  // no copy of the states before the step. Freezes those that fail, and
+  // empties `bodies`.
+  void StepBatch(BatchStep step, std::vector<std::size_t>* bodies, Share* share);
   // Adds body `index` to the substep batch of its n and kind, stepping the
   // batch when full; false (and nothing done) when every batch is taken by
   // another n.

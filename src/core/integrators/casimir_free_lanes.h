@@ -4,12 +4,14 @@
 // in SIMD registers (AVX-512, AVX2 or SSE2, picked when the program loads).
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
 #include "casimir_step.h"
 #include "compositions.h"
 #include "lane_math.h"
+#include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/integrator.h"
@@ -88,6 +90,15 @@ struct FreeLanes : LaneBodies {
   void Store(std::size_t lane, BodyState* state) const {
     for (int k = 0; k < 3; ++k) state->position[k] = position[k][lane];
     for (int k = 0; k < 4; ++k) state->orientation.coeffs()[k] = orientation[k][lane];
+  }
+
+  // The one CheckState bound a free step can break, as it changes x and q
+  // alone: kNonFinite if they are not finite.
+  BodyFault PoseFault(std::size_t lane) const {
+    const double sum = position[0][lane] + position[1][lane] + position[2][lane] +
+                       orientation[0][lane] + orientation[1][lane] + orientation[2][lane] +
+                       orientation[3][lane];
+    return std::isfinite(sum) ? BodyFault::kNone : BodyFault::kNonFinite;
   }
 };
 
@@ -213,15 +224,23 @@ void StepFreeInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels&
                      StepOne step_one) {
   FreeLaneQueues queues(kernels);
   const auto flush = [&](FreeLaneQueue& queue) {
-    queue.Flush(
-        dt_s, [&](std::size_t l, std::size_t body) { queue.lanes.Store(l, &batch.states[body]); });
+    queue.Flush(dt_s, [&](std::size_t l, std::size_t body) {
+      const BodyFault fault = batch.faults != nullptr ? queue.lanes.PoseFault(l) : BodyFault::kNone;
+      if (fault == BodyFault::kNone) {
+        queue.lanes.Store(l, &batch.states[body]);
+      } else {
+        batch.faults[body] = fault;  // CommitStep's bounds that a free step can break
+      }
+    });
   };
   for (const std::size_t body : batch) {
     const BodyModel& model = batch.models[body];
     BodyState& state = batch.states[body];
     FreeLaneQueue* queue = queues.For(model, state, dt_s);
     if (queue == nullptr) {
-      step_one(model, dt_s, &state);
+      BodyState next = state;
+      step_one(model, dt_s, &next);
+      CommitStep(batch, body, next);
     } else if (queue->Add(body, model, state)) {
       flush(*queue);
     }
