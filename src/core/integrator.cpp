@@ -25,9 +25,8 @@ std::unique_ptr<Integrator> Make() {
 
 void Integrator::StepFree(const BodyBatch& batch, double dt_s) const {
   for (const std::size_t body : batch) {
-    BodyState next = batch.states[body];
-    Step(batch.models[body], nullptr, dt_s, &next);
-    CommitStep(batch, body, next);
+    StepFreeChecked(batch, body,
+                    [&](BodyState* state) { Step(batch.models[body], nullptr, dt_s, state); });
   }
 }
 

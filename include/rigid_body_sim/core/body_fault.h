@@ -48,4 +48,11 @@ inline BodyFault CheckState(const BodyModel& model, const BodyState& state) {
                     model.mass(), model.inverse_principal_moments().maxCoeff());
 }
 
+// The part of CheckState a free step can break (it changes x and q alone):
+// kNonFinite if x or q is not finite, else kNone.
+inline BodyFault CheckPose(const BodyState& state) {
+  const double sum = state.position.sum() + state.orientation.coeffs().sum();
+  return std::isfinite(sum) ? BodyFault::kNone : BodyFault::kNonFinite;
+}
+
 }  // namespace rigid_body_sim::core

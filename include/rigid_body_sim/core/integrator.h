@@ -55,6 +55,25 @@ inline void CommitStep(const BodyBatch& batch, std::size_t body, const BodyState
   batch.states[body] = next;
 }
 
+// Runs step(&state) on free body `body` in place; when the batch records
+// faults and the new pose breaks CheckPose, puts the pose back and records
+// that. (A free step changes the pose alone, and copying it costs less than
+// copying the state.)
+template <typename Step>
+inline void StepFreeChecked(const BodyBatch& batch, std::size_t body, Step step) {
+  BodyState& state = batch.states[body];
+  const Eigen::Vector3d position = state.position;
+  const Eigen::Quaterniond orientation = state.orientation;
+  step(&state);
+  if (batch.faults == nullptr) return;
+  const BodyFault fault = CheckPose(state);
+  if (fault != BodyFault::kNone) {
+    state.position = position;
+    state.orientation = orientation;
+    batch.faults[body] = fault;
+  }
+}
+
 // One row of the integrator table.
 struct IntegratorInfo {
   const char* name;
@@ -76,7 +95,7 @@ class Integrator {
   // Advances the free bodies of `batch` (each full rank, with neither force
   // nor torque) by dt_s, as Step with a null load would. A scheme may step
   // several at a time in SIMD lanes; this default steps them one by one.
-  // With BodyBatch::faults each new state passes CommitStep; without,
+  // With BodyBatch::faults each new state passes StepFreeChecked; without,
   // checking them is the caller's.
   virtual void StepFree(const BodyBatch& batch, double dt_s) const;
   // Advances the full-rank bodies of `batch` under their held loads by dt_s,

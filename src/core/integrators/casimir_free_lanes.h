@@ -92,8 +92,7 @@ struct FreeLanes : LaneBodies {
     for (int k = 0; k < 4; ++k) state->orientation.coeffs()[k] = orientation[k][lane];
   }
 
-  // The one CheckState bound a free step can break, as it changes x and q
-  // alone: kNonFinite if they are not finite.
+  // CheckPose of the lane's position and orientation.
   BodyFault PoseFault(std::size_t lane) const {
     const double sum = position[0][lane] + position[1][lane] + position[2][lane] +
                        orientation[0][lane] + orientation[1][lane] + orientation[2][lane] +
@@ -238,9 +237,7 @@ void StepFreeInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels&
     BodyState& state = batch.states[body];
     FreeLaneQueue* queue = queues.For(model, state, dt_s);
     if (queue == nullptr) {
-      BodyState next = state;
-      step_one(model, dt_s, &next);
-      CommitStep(batch, body, next);
+      StepFreeChecked(batch, body, [&](BodyState* stepped) { step_one(model, dt_s, stepped); });
     } else if (queue->Add(body, model, state)) {
       flush(*queue);
     }

@@ -28,10 +28,10 @@ void ExactFreeIntegrator::StepFree(const BodyBatch& batch, double dt_s) const {
   }
   for (const std::size_t body : batch) {
     const BodyModel& model = batch.models[body];
-    BodyState state = batch.states[body];
-    DampedDrift(model.inverse_mass(), 0.0, dt_s, &state);
-    state.orientation = batch.free_flows[body].Advance(model, state, dt_s);
-    CommitStep(batch, body, state);
+    StepFreeChecked(batch, body, [&](BodyState* state) {
+      DampedDrift(model.inverse_mass(), 0.0, dt_s, state);
+      state->orientation = batch.free_flows[body].Advance(model, *state, dt_s);
+    });
   }
 }
 
