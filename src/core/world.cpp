@@ -181,12 +181,14 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       case StepClass::kBatched:
         if (load != nullptr) {
           share->loaded_batch.push_back(i);
-          if (share->loaded_batch.size() == kBatch)
+          if (share->loaded_batch.size() == kBatch) {
             StepBatch(&Integrator::StepLoaded, &share->loaded_batch, share);
+          }
         } else {
           share->free_batch.push_back(i);
-          if (share->free_batch.size() == kBatch)
+          if (share->free_batch.size() == kBatch) {
             StepBatch(&Integrator::StepFree, &share->free_batch, share);
+          }
         }
         break;
       case StepClass::kSubsteps: {
