@@ -66,8 +66,8 @@ inline __attribute__((always_inline)) void TurnLanes(NestedLaneState* s, Turn tu
 // The step. kBodyAxes as for lanes::LoadOf; kDamped: whether any lane is
 // damped (then `decays` holds each lane's decays, which the free flows apply
 // as NestedStep does); kAngles: the series or SinCosWide. Π is found again
-// after each kick, from its R_WP; q stays a unit quaternion to ~1e-16 through the products
-// and is normalised once, at the end.
+// after each kick, from its R_WP; q stays a unit quaternion to ~1e-16
+// through the products and is normalised once, at the end.
 template <bool kBodyAxes, bool kDamped, lanes::Angles kAngles, std::size_t m, std::size_t n>
 inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<m>& outer,
                                                             const AxisSplitting<n>& inner, double h,
