@@ -95,8 +95,8 @@ class Integrator {
   // Advances the free bodies of `batch` (each full rank, with neither force
   // nor torque) by dt_s, as Step with a null load would. A scheme may step
   // several at a time in SIMD lanes; this default steps them one by one.
-  // With BodyBatch::faults each new state passes StepFreeChecked; without,
-  // checking them is the caller's.
+  // With BodyBatch::faults each new pose passes CheckPose, as in
+  // StepFreeChecked; without, checking them is the caller's.
   virtual void StepFree(const BodyBatch& batch, double dt_s) const;
   // Advances the full-rank bodies of `batch` under their held loads by dt_s,
   // as Step would, several at a time where a scheme can; this default steps
