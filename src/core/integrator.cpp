@@ -24,10 +24,9 @@ std::unique_ptr<Integrator> Make() {
 }  // namespace
 
 void Integrator::StepFree(const BodyBatch& batch, double dt_s) const {
-  for (const std::size_t body : batch) {
-    StepFreeChecked(batch, body,
-                    [&](BodyState* state) { Step(batch.models[body], nullptr, dt_s, state); });
-  }
+  StepFreeChecked(batch, batch.indices, batch.size, [&](std::size_t body, BodyState* state) {
+    Step(batch.models[body], nullptr, dt_s, state);
+  });
 }
 
 void Integrator::StepLoaded(const BodyBatch& batch, double dt_s) const {

@@ -2,6 +2,8 @@
 // one table (IntegratorTable): its name, order, summary and factory.
 #pragma once
 
+#include <algorithm>
+#include <cstddef>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,22 +57,38 @@ inline void CommitStep(const BodyBatch& batch, std::size_t body, const BodyState
   batch.states[body] = next;
 }
 
-// Runs step(&state) on free body `body` in place; when the batch records
-// faults and the new pose breaks CheckPose, puts the pose back and records
-// that. (A free step changes the pose alone, and copying it costs less than
-// copying the state.)
+// Runs step(body, &state) on each free body bodies[0..count) in place; when
+// the batch records faults, a body whose new pose breaks CheckPose gets its
+// pose back and the fault recorded. (A free step changes the pose alone, and
+// copying it costs less than copying the state.) The poses are checked after
+// each run of kFreeCheckRun bodies, not each right after its own step, where
+// the check would wait for the step's last result.
+constexpr std::size_t kFreeCheckRun = 16;
 template <typename Step>
-inline void StepFreeChecked(const BodyBatch& batch, std::size_t body, Step step) {
-  BodyState& state = batch.states[body];
-  const Eigen::Vector3d position = state.position;
-  const Eigen::Quaterniond orientation = state.orientation;
-  step(&state);
-  if (batch.faults == nullptr) return;
-  const BodyFault fault = CheckPose(state);
-  if (fault != BodyFault::kNone) {
-    state.position = position;
-    state.orientation = orientation;
-    batch.faults[body] = fault;
+inline void StepFreeChecked(const BodyBatch& batch, const std::size_t* bodies, std::size_t count,
+                            Step step) {
+  Eigen::Vector3d positions[kFreeCheckRun];
+  Eigen::Quaterniond orientations[kFreeCheckRun];
+  for (std::size_t first = 0; first < count; first += kFreeCheckRun) {
+    const std::size_t run = std::min(kFreeCheckRun, count - first);
+    for (std::size_t k = 0; k < run; ++k) {
+      const std::size_t body = bodies[first + k];
+      BodyState& state = batch.states[body];
+      positions[k] = state.position;
+      orientations[k] = state.orientation;
+      step(body, &state);
+    }
+    if (batch.faults == nullptr) continue;
+    for (std::size_t k = 0; k < run; ++k) {
+      const std::size_t body = bodies[first + k];
+      BodyState& state = batch.states[body];
+      const BodyFault fault = CheckPose(state);
+      if (fault != BodyFault::kNone) {
+        state.position = positions[k];
+        state.orientation = orientations[k];
+        batch.faults[body] = fault;
+      }
+    }
   }
 }
 

@@ -237,7 +237,8 @@ void StepFreeInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels&
     BodyState& state = batch.states[body];
     FreeLaneQueue* queue = queues.For(model, state, dt_s);
     if (queue == nullptr) {
-      StepFreeChecked(batch, body, [&](BodyState* stepped) { step_one(model, dt_s, stepped); });
+      StepFreeChecked(batch, &body, 1,
+                      [&](std::size_t, BodyState* stepped) { step_one(model, dt_s, stepped); });
     } else if (queue->Add(body, model, state)) {
       flush(*queue);
     }

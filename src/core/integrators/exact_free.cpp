@@ -1,7 +1,5 @@
 #include "rigid_body_sim/core/integrators/exact_free.h"
 
-#include <algorithm>
-
 #include "rigid_body_sim/core/integrators/exact_free_flow.h"
 #include "rigid_body_sim/core/reference/torque_free.h"
 #include "step_parts.h"
@@ -28,35 +26,11 @@ void ExactFreeIntegrator::StepFree(const BodyBatch& batch, double dt_s) const {
     Integrator::StepFree(batch, dt_s);
     return;
   }
-  // StepFreeChecked for a run of bodies at a time: the poses are checked
-  // after the run's flows, not each right after its own, where the check
-  // would wait for the flow's last sine, cosine and arctangent.
-  constexpr std::size_t kRun = 16;
-  Eigen::Vector3d positions[kRun];
-  Eigen::Quaterniond orientations[kRun];
-  for (std::size_t first = 0; first < batch.size; first += kRun) {
-    const std::size_t count = std::min(kRun, batch.size - first);
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::size_t body = batch.indices[first + k];
-      const BodyModel& model = batch.models[body];
-      BodyState& state = batch.states[body];
-      positions[k] = state.position;
-      orientations[k] = state.orientation;
-      DampedDrift(model.inverse_mass(), 0.0, dt_s, &state);
-      state.orientation = batch.free_flows[body].Advance(model, state, dt_s);
-    }
-    if (batch.faults == nullptr) continue;
-    for (std::size_t k = 0; k < count; ++k) {
-      const std::size_t body = batch.indices[first + k];
-      BodyState& state = batch.states[body];
-      const BodyFault fault = CheckPose(state);
-      if (fault != BodyFault::kNone) {
-        state.position = positions[k];
-        state.orientation = orientations[k];
-        batch.faults[body] = fault;
-      }
-    }
-  }
+  StepFreeChecked(batch, batch.indices, batch.size, [&](std::size_t body, BodyState* state) {
+    const BodyModel& model = batch.models[body];
+    DampedDrift(model.inverse_mass(), 0.0, dt_s, state);
+    state->orientation = batch.free_flows[body].Advance(model, *state, dt_s);
+  });
 }
 
 void ExactFreeIntegrator::StepLoaded(const BodyBatch& batch, double dt_s) const {
