@@ -44,9 +44,9 @@ struct LoadedLanes : LaneBodies {
   // The HeldLoads::PrincipalParts::stamp of the load parts each lane holds;
   // 0: none (stamps start at 1).
   std::uint64_t load_stamp[kLanes] = {};
-  // Whether a lane loaded since the last step holds a body-axes force or couple.
+  // The kernel instance the lanes take, set by whoever fills them: whether
+  // their bodies may hold a body-axes force or couple, and be damped.
   bool body_axes = false;
-  // Whether a lane loaded since the last step is damped.
   bool damped = false;
 
   // Copies the body into `lane`; its load parts only when the lane does not
@@ -63,8 +63,6 @@ inline void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const Bo
                               const HeldLoads& loads) {
   LaneBodies::Load(lane, model, state);
   inverse_moment_max[lane] = model.inverse_principal_moments().maxCoeff();
-  body_axes = body_axes || loads.has_body_axes();
-  damped = damped || loads.has_damping();
   const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
   if (load_stamp[lane] == principal.stamp) return;
   load_stamp[lane] = principal.stamp;
@@ -210,7 +208,7 @@ struct FlowDecays {
 // step(body_axes, damped, decays), the flags as std::bool_constant: the
 // kernel instance for the lanes' flags, with the damping's exponentials for
 // free flows of flow_s [s] taken outside its lane loop, which then stays
-// free of calls; then the lanes' faults. Clears body_axes and damped.
+// free of calls; then the lanes' faults.
 template <std::size_t flows, typename Step>
 inline __attribute__((always_inline)) void StepForFlags(const std::array<double, flows>& flow_s,
                                                         LoadedLanes* lanes, Step step) {
@@ -237,12 +235,10 @@ inline __attribute__((always_inline)) void StepForFlags(const std::array<double,
     step(std::false_type{}, std::false_type{}, decays);
   }
   lanes::FindFaults(lanes);
-  lanes->body_axes = false;
-  lanes->damped = false;
 }
 
 // Advances every lane by h; the bodies in use must fit (FitsLoadedLanes,
-// DampingFitsLoadedLanes). Clears body_axes and damped.
+// DampingFitsLoadedLanes).
 void CasimirLoadedStep4(double h, LoadedLanes* lanes);
 // The same with SinCosWide, for bodies that fit FitsLoadedWideLanes alone.
 void CasimirLoadedWideStep4(double h, LoadedLanes* lanes);
@@ -319,7 +315,11 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     // branch lets the copy into the lanes start before the fit is computed.
     const auto turn_in = [&](std::size_t angles_group) __attribute__((always_inline)) {
       const std::size_t group = angles_group + (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
-      if (turned[group] == nullptr) turned[group] = &cache.NextLoadedBlock(group);
+      if (turned[group] == nullptr) {
+        turned[group] = &cache.NextLoadedBlock(group);
+        turned[group]->damped = damped;
+        turned[group]->body_axes = load.has_body_axes();
+      }
       turned[group]->Load(turned_count[group], model, state, load);
       turned_bodies[group][turned_count[group]++] = body;
       if (turned_count[group] == kLanes) flush_turned(group);

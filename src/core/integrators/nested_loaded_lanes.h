@@ -158,7 +158,7 @@ inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<
 
 // Advances every lane by h through the composition (StepForFlags). The
 // bodies in use must fit (FitsLoadedLanes with the composition's
-// LoadedLanesReach, DampingFitsLoadedLanes). Clears body_axes and damped.
+// LoadedLanesReach, DampingFitsLoadedLanes).
 template <lanes::Angles kAngles, std::size_t m, std::size_t n>
 inline __attribute__((always_inline)) void NestedLoadedLanes(const KickSplitting<m>& outer,
                                                              const AxisSplitting<n>& inner,
