@@ -163,6 +163,9 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   const Integrator& integrator = *integrator_;
   const double dt_s = options_.dt_s;
   const std::uint32_t max_substeps = options_.max_substeps;
+  // Whether every body in the free and the loaded batch is within PlanStep's
+  // cheap bound (BodyBatch::within_one_step_bound).
+  bool free_within_bound = true, loaded_within_bound = true;
   for (std::size_t i = begin; i < end; ++i) {
     if (hot.faults[i] != BodyFault::kNone) continue;
     const BodyModel& model = hot.models[i];
@@ -181,13 +184,17 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       case StepClass::kBatched:
         if (load != nullptr) {
           share->loaded_batch.push_back(i);
+          loaded_within_bound = loaded_within_bound && plan.within_one_step_bound;
           if (share->loaded_batch.size() == kBatch) {
-            StepBatch(&Integrator::StepLoaded, &share->loaded_batch, share);
+            StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
+            loaded_within_bound = true;
           }
         } else {
           share->free_batch.push_back(i);
+          free_within_bound = free_within_bound && plan.within_one_step_bound;
           if (share->free_batch.size() == kBatch) {
-            StepBatch(&Integrator::StepFree, &share->free_batch, share);
+            StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
+            free_within_bound = true;
           }
         }
         break;
@@ -209,8 +216,8 @@ void World::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       }
     }
   }
-  StepBatch(&Integrator::StepFree, &share->free_batch, share);
-  StepBatch(&Integrator::StepLoaded, &share->loaded_batch, share);
+  StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
+  StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
   for (Share::SubstepBatch& batch : share->substep_batches) StepSubstepBatch(&batch, share);
 }
 
@@ -289,11 +296,13 @@ BodyBatch World::Batch(const std::vector<std::size_t>& indices, LaneCache* cache
           cache};
 }
 
-void World::StepBatch(BatchStep step, std::vector<std::size_t>* bodies, Share* share) {
+void World::StepBatch(BatchStep step, std::vector<std::size_t>* bodies, bool within_one_step_bound,
+                      Share* share) {
   if (bodies->empty()) return;
   BodyBatch batch = Batch(*bodies, &share->lane_cache);
   std::vector<BodyFault>& faults = bodies_.hot().faults;
   batch.faults = faults.data();
+  batch.within_one_step_bound = within_one_step_bound;
   (integrator_.get()->*step)(batch, options_.dt_s);
   for (const std::size_t index : *bodies) {
     if (faults[index] != BodyFault::kNone) ++share->frozen;

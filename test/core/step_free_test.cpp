@@ -122,6 +122,52 @@ void ExpectStatesNear(const World& world, const std::vector<BodyState>& expected
   }
 }
 
+TEST(LanePolicy, PlanStepsOneStepBoundImpliesTheLanesFit) {
+  // Bodies at the edge of PlanStep's cheap bound, MomentumReachSq just
+  // below OneStepMomentumSq, free or under world and body forces at a
+  // particle: the batches within it skip the lanes' own check, so each must
+  // fit the free lanes and the loaded lanes of every reach that
+  // OneStepBoundFitsLanes admits, the default's among them. A reach just past
+  // it does not fit at the edge: the bound is what the check relies on.
+  const LoadedLanesReach admitted[] = {kTripleJumpReach, {1.9, 1.0}, {1.0, 1.9}};
+  const LoadedLanesReach refused = {2.0, 1.0};
+  for (const LoadedLanesReach& reach : admitted) EXPECT_TRUE(OneStepBoundFitsLanes(reach));
+  EXPECT_FALSE(OneStepBoundFitsLanes(refused));
+  const World world = MakeFreeWorld("casimir_splitting4", 1e-3);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  std::size_t refused_at_edge = 0;
+  for (const double dt : {1e-3, 0.02, 0.5}) {
+    for (std::size_t i = 0; i < world.size(); ++i) {
+      const BodyModel& model = world.model(i);
+      for (int kind = 0; kind < 3; ++kind) {
+        SCOPED_TRACE("dt " + std::to_string(dt) + ", body " + std::to_string(i) + ", load " +
+                     std::to_string(kind));
+        HeldLoads load;
+        if (kind > 0) AddParticleForce(model, i, 0.5 * kind, kind == 2, &load);
+        const HeldLoads* held = kind > 0 ? &load : nullptr;
+        const double edge_sq = (1.0 - 1e-12) * OneStepMomentumSq(model, dt);
+        const double kick = dt * load.TorqueBound();
+        // MomentumReachSq is |L|² free, 2(|L|² + (dt τ_max)²) under a load.
+        const double momentum_sq = held == nullptr ? edge_sq : 0.5 * edge_sq - kick * kick;
+        if (momentum_sq <= 0.0) continue;
+        BodyState state = world.state(i);
+        state.angular_momentum =
+            std::sqrt(momentum_sq) *
+            Eigen::Vector3d(unit(random), unit(random), unit(random)).normalized();
+        ASSERT_LE(MomentumReachSq(state, held, dt), OneStepMomentumSq(model, dt));
+        EXPECT_TRUE(FitsFreeLanes(model, state, dt));
+        if (held == nullptr) continue;
+        for (const LoadedLanesReach& reach : admitted) {
+          EXPECT_TRUE(FitsLoadedLanes(model, state, load, dt, reach));
+        }
+        if (!FitsLoadedLanes(model, state, load, dt, refused)) ++refused_at_edge;
+      }
+    }
+  }
+  EXPECT_GT(refused_at_edge, 0u);
+}
+
 class EveryScheme : public ::testing::TestWithParam<std::string> {};
 
 INSTANTIATE_TEST_SUITE_P(Core, EveryScheme, ::testing::ValuesIn(IntegratorNames()),

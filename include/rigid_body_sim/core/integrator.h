@@ -39,6 +39,10 @@ struct BodyBatch {
   // state from before the step, so the caller needs no copy of it. Null: the
   // caller checks.
   BodyFault* faults = nullptr;
+  // Every body is within PlanStep's cheap bound at the step's dt
+  // (StepPlan::within_one_step_bound), so the lanes it fits need no check of
+  // their own (OneStepBoundFitsLanes).
+  bool within_one_step_bound = false;
 
   const std::size_t* begin() const { return indices; }
   const std::size_t* end() const { return indices + size; }

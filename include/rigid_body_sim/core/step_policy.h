@@ -110,6 +110,17 @@ inline bool FitsLoadedWideLanes(const BodyModel& model, const BodyState& state,
                     MomentumReachSq(state, &load, dt_s, reach.kick_sum), kWideMaxAngle);
 }
 
+// Whether PlanStep's cheap bound at dt, MomentumReachSq(state, load, dt) <=
+// OneStepMomentumSq(model, dt), implies that the body fits lanes whose step
+// reaches `reach` at dt (FitsLoadedLanes; FitsFreeLanes is a reach of {1, 0}):
+// with T = dt max_k 1/λ_k, f T √(2(|L|² + (k dt τ)²)) <= f max(k, 1) T
+// √(2(|L|² + (dt τ)²)) <= f max(k, 1) kMaxSubstepAngle / kRateBoundFactor.
+// The factor 0.999 leaves room for the rounding of the two bounds.
+inline bool OneStepBoundFitsLanes(const LoadedLanesReach& reach) {
+  return reach.longest_flow * std::max(reach.kick_sum, 1.0) * kMaxSubstepAngle <=
+         0.999 * kRateBoundFactor * kSeriesMaxAngle;
+}
+
 // Whether a damped body may take the loaded lanes: c·dt <= kLanesMaxDecay for
 // both rates. The backward inner sub-step then lengthens the rescaled time of
 // its rotation by at most e^{1.71/16} < 1.12 and the kicks' growth by less,
@@ -151,6 +162,9 @@ enum class StepClass : std::uint8_t {
 struct StepPlan {
   StepClass step_class;
   std::uint32_t substeps;  // 1 for kBatched, n for kSubsteps
+  // MomentumReachSq <= one_step_momentum_sq, PlanStep's cheap bound, which
+  // spares the lanes their own check (OneStepBoundFitsLanes).
+  bool within_one_step_bound;
 };
 
 // The plan of a body's step. `one_step_momentum_sq` is OneStepMomentumSq of
@@ -159,15 +173,14 @@ inline StepPlan PlanStep(const Integrator& integrator, const BodyModel& model,
                          const BodyState& state, const HeldLoads* load, double one_step_momentum_sq,
                          double dt_s, std::uint32_t max_substeps) {
   if (load == nullptr && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
-    return {StepClass::kAtRest, 0};
+    return {StepClass::kAtRest, 0, false};
   }
+  const bool within = MomentumReachSq(state, load, dt_s) <= one_step_momentum_sq;
   const std::uint32_t substeps =
-      MomentumReachSq(state, load, dt_s) <= one_step_momentum_sq
-          ? 1
-          : SubstepsFor(integrator, model, state, load, dt_s, max_substeps);
-  if (substeps == 0) return {StepClass::kFrozen, 0};
-  if (substeps == 1 && model.is_full_rank()) return {StepClass::kBatched, 1};
-  return {StepClass::kSubsteps, substeps};
+      within ? 1 : SubstepsFor(integrator, model, state, load, dt_s, max_substeps);
+  if (substeps == 0) return {StepClass::kFrozen, 0, false};
+  if (substeps == 1 && model.is_full_rank()) return {StepClass::kBatched, 1, within};
+  return {StepClass::kSubsteps, substeps, within};
 }
 
 }  // namespace rigid_body_sim::core

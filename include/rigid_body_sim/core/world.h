@@ -226,7 +226,9 @@ class World {
   // checks each body before it writes its state back (BodyBatch::faults):
   // no copy of the states before the step. Freezes those that fail, and
   // empties `bodies`.
-  void StepBatch(BatchStep step, std::vector<std::size_t>* bodies, Share* share);
+  // `within_one_step_bound`: as BodyBatch's.
+  void StepBatch(BatchStep step, std::vector<std::size_t>* bodies, bool within_one_step_bound,
+                 Share* share);
   // Adds body `index` to the substep batch of its n and kind, stepping the
   // batch when full; false (and nothing done) when every batch is taken by
   // another n.

@@ -198,9 +198,11 @@ struct FreeLaneQueues {
         commuting_wide(CommutingFreeWideLanes, true) {}
 
   // The queue whose kernel takes a free body's step angles, or null when
-  // they are beyond every kernel's.
-  FreeLaneQueue* For(const BodyModel& model, const BodyState& state, double dt_s) {
-    if (FitsFreeLanes(model, state, dt_s)) return &series;
+  // they are beyond every kernel's. `within_bound`: the body is within
+  // PlanStep's cheap bound at dt_s, so it fits the series (OneStepBoundFitsLanes).
+  FreeLaneQueue* For(const BodyModel& model, const BodyState& state, double dt_s,
+                     bool within_bound) {
+    if (within_bound || FitsFreeLanes(model, state, dt_s)) return &series;
     if (!FitsFreeWideLanes(model, state, dt_s)) return nullptr;
     const CasimirSplit split(model);
     return split.axis1 == 0.0 || split.axis3 == 0.0 ? &commuting_wide : &wide;
@@ -235,7 +237,7 @@ void StepFreeInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels&
   for (const std::size_t body : batch) {
     const BodyModel& model = batch.models[body];
     BodyState& state = batch.states[body];
-    FreeLaneQueue* queue = queues.For(model, state, dt_s);
+    FreeLaneQueue* queue = queues.For(model, state, dt_s, batch.within_one_step_bound);
     if (queue == nullptr) {
       StepFreeChecked(batch, &body, 1,
                       [&](std::size_t, BodyState* stepped) { step_one(model, dt_s, stepped); });

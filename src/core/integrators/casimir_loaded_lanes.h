@@ -265,6 +265,7 @@ template <typename StepOne>
 void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels& free_lanes,
                        const LoadedLaneKernels& loaded_lanes, StepOne step_one) {
   const LoadedLanesReach& reach = loaded_lanes.reach;
+  const bool fit_known = batch.within_one_step_bound && OneStepBoundFitsLanes(reach);
   FreeLaneQueues pulled(free_lanes);  // bodies under a constant force
   const auto flush_pulled = [&](FreeLaneQueue& queue) {
     queue.Flush(dt_s, [&](std::size_t l, std::size_t body) {
@@ -310,7 +311,9 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     const HeldLoads& load = batch.loads[body];
     BodyState& state = batch.states[body];
     const bool damped = load.has_damping();
-    FreeLaneQueue* queue = load.has_torque() || damped ? nullptr : pulled.For(model, state, dt_s);
+    FreeLaneQueue* queue = load.has_torque() || damped
+                               ? nullptr
+                               : pulled.For(model, state, dt_s, batch.within_one_step_bound);
     // The group by branches, not by arithmetic on the fit: a predicted
     // branch lets the copy into the lanes start before the fit is computed.
     const auto turn_in = [&](std::size_t angles_group) __attribute__((always_inline)) {
@@ -327,7 +330,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     if (queue != nullptr) {
       if (queue->Add(body, model, state)) flush_pulled(*queue);
     } else if (const bool damping_fits = !damped || DampingFitsLoadedLanes(load.damping(), dt_s);
-               damping_fits && FitsLoadedLanes(model, state, load, dt_s, reach)) {
+               damping_fits && (fit_known || FitsLoadedLanes(model, state, load, dt_s, reach))) {
       turn_in(0);
     } else if (damping_fits && FitsLoadedWideLanes(model, state, load, dt_s, reach)) {
       turn_in(kWideGroups);
