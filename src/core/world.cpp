@@ -101,6 +101,7 @@ void World::RemoveBody(BodyId id) {
   const std::size_t index = bodies_.CheckedIndex(id);
   if (bodies_.hot().faults[index] != BodyFault::kNone) --frozen_count_;
   bodies_.Remove(id);
+  ForgetLaneStates();        // the bodies after it moved down
   wrenches_.RemoveBody(id);  // sums again: the loads moved with their bodies
   for (BodyListener* listener : listeners_) listener->OnBodyRemoved(*this, id);
 }
@@ -251,6 +252,9 @@ void World::StepSubstepBatch(Share::SubstepBatch* batch, Share* share) {
     StepAlone(index, batch->substeps, batch->loaded ? &bodies_.hot().loads[index] : nullptr);
   } else {
     const double h = options_.dt_s / batch->substeps;
+    // Since the batch last stepped, its cache's states may have been put
+    // back (CheckOrRestore) or written from outside, unknown to it.
+    batch->lane_cache.ForgetStates();
     for (std::uint32_t k = 0; k < batch->substeps; ++k) {
       batch->lane_cache.StartStep();
       if (batch->loaded) {
@@ -339,6 +343,7 @@ void World::Reset() {
   BodyHotColumns& hot = bodies_.hot();
   BodyColdColumns& cold = bodies_.cold();
   hot.states = cold.initial_states;
+  ForgetLaneStates();
   wrenches_.Clear();
   hot.faults.assign(size(), BodyFault::kNone);
   frozen_count_ = 0;
@@ -349,6 +354,7 @@ void World::SetBodyState(BodyId id, const BodyState& state) {
   const std::size_t index = bodies_.CheckedIndex(id);
   BodyHotColumns& hot = bodies_.hot();
   hot.states[index] = state;
+  ForgetLaneStates();
   std::vector<char>& record_valid = bodies_.cold().step_record_valid;
   if (index < record_valid.size()) record_valid[index] = 0;
   if (hot.faults[index] != BodyFault::kNone) {
@@ -373,6 +379,10 @@ void World::SetIntegrator(const std::string& name) {
   integrator_ = MakeIntegrator(name);
   options_.integrator = name;
   bodies_.hot().free_flows.clear();  // kept for exact_free alone
+}
+
+void World::ForgetLaneStates() {
+  for (Share& share : shares_) share.lane_cache.ForgetStates();
 }
 
 }  // namespace rigid_body_sim::core

@@ -578,12 +578,20 @@ TEST_P(EveryScheme, StepLoadedWithALaneCacheIsStepLoadedWithout) {
   }
 }
 
-TEST(LaneCache, BlocksPastTheKeptOnesGiveWhatTheKeptOnesGive) {
+class LaneCacheOf : public ::testing::TestWithParam<std::size_t> {};
+
+INSTANTIATE_TEST_SUITE_P(
+    Core, LaneCacheOf,
+    // Blocks of 8 lanes: the reused block once and a half per step, and of up
+    // to 16: many times.
+    ::testing::Values(LaneCache::kKeptBlocks * 8 + 8 + 3, LaneCache::kKeptBlocks * 16 + 50));
+
+TEST_P(LaneCacheOf, BlocksPastTheKeptOnesGiveWhatTheKeptOnesGive) {
   // More world-pushed bodies than the kept blocks of one group hold, so the
   // last take the group's reused block: a batch stepped with a cache kept
   // from step to step against the same batch without, bit for bit, while a
   // load past the kept blocks and one within them change.
-  const std::size_t count = LaneCache::kKeptBlocks * 16 + 50;  // blocks of up to 16 lanes
+  const std::size_t count = GetParam();
   std::vector<BodyModel> models;
   std::vector<BodyState> states(count);
   for (std::size_t i = 0; i < count; ++i) {
@@ -615,6 +623,84 @@ TEST(LaneCache, BlocksPastTheKeptOnesGiveWhatTheKeptOnesGive) {
     SCOPED_TRACE("body " + std::to_string(i));
     ASSERT_TRUE(test::SameBits(cached[i], uncached[i]));
   }
+}
+
+// Holds on each body of `world` a world-axes force at its last particle,
+// M·(0.5, −1, 0.25) N/kg: the same on a body whatever its index.
+void PushEveryBody(World* world) {
+  for (std::size_t i = 0; i < world->size(); ++i) {
+    ParticleWrench push;
+    push.body = world->id(i);
+    push.particle = world->model(i).particle_count() - 1;
+    push.force = world->model(i).mass() * Eigen::Vector3d(0.5, -1.0, 0.25);
+    world->HoldWrench(push);
+  }
+}
+
+// Steps `world` and a world built anew from its models and states, pushed as
+// PushEveryBody pushes, once each; expects the same states bit for bit.
+void ExpectStepOfARebuiltWorld(World* world, const std::string& after) {
+  World rebuilt(world->models(), world->states(), world->options());
+  PushEveryBody(&rebuilt);
+  world->Step();
+  rebuilt.Step();
+  for (std::size_t i = 0; i < world->size(); ++i) {
+    SCOPED_TRACE(after + ", body " + std::to_string(i));
+    ASSERT_TRUE(test::SameBits(world->state(i), rebuilt.state(i)));
+  }
+}
+
+TEST_P(EveryScheme, StatesWrittenBetweenStepsAreWhereTheNextStepStarts) {
+  // The loaded lanes keep each body's state from one step to the next
+  // (lane_cache.h). A world whose states are written between steps steps
+  // on as a world built anew from them, whose lanes hold nothing.
+  World world = MakeFreeWorld(GetParam(), 1e-3);
+  PushEveryBody(&world);
+  for (int n = 0; n < 3; ++n) world.Step();
+  BodyState moved = world.state(5);
+  moved.position.x() += 0.5;
+  moved.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY())) *
+                      moved.orientation;
+  moved.angular_momentum *= 0.5;
+  world.SetBodyState(world.id(5), moved);
+  ExpectStepOfARebuiltWorld(&world, "SetBodyState");
+  world.Step();
+  world.Reset();
+  PushEveryBody(&world);
+  ExpectStepOfARebuiltWorld(&world, "Reset");
+  world.Step();
+  world.RemoveBody(world.id(2));  // the bodies after it move to other lanes
+  ExpectStepOfARebuiltWorld(&world, "RemoveBody");
+
+  // Loaded bodies in a substep batch, whose lanes keep their states through
+  // the batch's n steps: a state written between World steps.
+  std::vector<BodyModel> models;
+  std::vector<BodyState> states;
+  for (int i = 0; i < 16; ++i) {
+    const BodyModel body = test::Diag123Body();
+    std::vector<Particle> particles;
+    for (std::size_t p = 0; p < body.particle_count(); ++p) {
+      particles.push_back({body.particle_masses()[p], body.particle_offsets()[p]});
+    }
+    models.emplace_back("spun" + std::to_string(i), particles);
+    BodyState state;
+    state.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d::UnitZ()));
+    state.angular_momentum = {0.3, 6.0, 0.2};  // about 0.6 rad a step of 0.1 s
+    states.push_back(state);
+  }
+  WorldOptions options;
+  options.integrator = GetParam();
+  options.dt_s = 0.1;
+  World spun(models, states, options);
+  PushEveryBody(&spun);
+  spun.Step();
+  spun.Step();
+  EXPECT_GT(spun.last_step_substeps_max(), 1u);
+  BodyState turned = spun.state(3);
+  turned.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX())) *
+                       turned.orientation;
+  spun.SetBodyState(spun.id(3), turned);
+  ExpectStepOfARebuiltWorld(&spun, "SetBodyState in a substep batch");
 }
 
 TEST_P(EveryScheme, ABadLoadedBodyInABatchIsFrozenAloneAndTheOthersAreUntouched) {

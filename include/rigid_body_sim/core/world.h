@@ -219,6 +219,8 @@ class World {
   void CheckBody(std::size_t index, const BodyDef& def) const;
   // Body `index`'s per-body constants: torque projector, damping, one-step bound.
   void PrepareBody(std::size_t index);
+  // After a state is written, or bodies move, outside Step: LaneCache::ForgetStates.
+  void ForgetLaneStates();
   std::uint32_t SubstepsFor(const BodyModel& model, const HeldLoads* load,
                             const BodyState& state) const;
   using BatchStep = void (Integrator::*)(const BodyBatch& batch, double dt_s) const;

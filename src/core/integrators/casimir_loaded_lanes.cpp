@@ -35,6 +35,7 @@ void LoadedLanes::FillIdle(std::size_t first) {
     angular_damping[l] = 0.0;
     inverse_moment_max[l] = 0.0;
     load_stamp[l] = 0;
+    held_body[l] = kNoBody;
   }
 }
 

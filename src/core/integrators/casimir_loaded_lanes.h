@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <iterator>
 #include <type_traits>
 #include <vector>
 
@@ -44,25 +45,40 @@ struct LoadedLanes : LaneBodies {
   // The HeldLoads::PrincipalParts::stamp of the load parts each lane holds;
   // 0: none (stamps start at 1).
   std::uint64_t load_stamp[kLanes] = {};
+  // The body (its index) whose state and model parts each lane holds, and
+  // the LaneCache::step in which the lane wrote that state back; kNoBody:
+  // none.
+  static constexpr std::size_t kNoBody = ~std::size_t{0};
+  std::size_t held_body[kLanes];
+  std::uint64_t held_step[kLanes] = {};
   // The kernel instance the lanes take, set by whoever fills them: whether
   // their bodies may hold a body-axes force or couple, and be damped.
   bool body_axes = false;
   bool damped = false;
 
-  // Copies the body into `lane`; its load parts only when the lane does not
-  // hold them already (load_stamp).
-  void Load(std::size_t lane, const BodyModel& model, const BodyState& state,
-            const HeldLoads& loads);
+  LoadedLanes() { std::fill(std::begin(held_body), std::end(held_body), kNoBody); }
+
+  // Copies body `body` into `lane` for a step numbered `cache_step`
+  // (LaneCache::step): its state and model parts only when the lane did not
+  // write this body's state back in the step before (held_body, held_step),
+  // its load parts only when the lane does not hold them already
+  // (load_stamp).
+  void Load(std::size_t lane, std::size_t body, std::uint64_t cache_step, const BodyModel& model,
+            const BodyState& state, const HeldLoads& loads);
   // LaneBodies::FillIdle with no load.
   void FillIdle(std::size_t first);
   // Writes the lane's state to `state`.
   void Store(std::size_t lane, BodyState* state) const;
 };
 
-inline void LoadedLanes::Load(std::size_t lane, const BodyModel& model, const BodyState& state,
+inline void LoadedLanes::Load(std::size_t lane, std::size_t body, std::uint64_t cache_step,
+                              const BodyModel& model, const BodyState& state,
                               const HeldLoads& loads) {
-  LaneBodies::Load(lane, model, state);
-  inverse_moment_max[lane] = model.inverse_principal_moments().maxCoeff();
+  if (held_body[lane] != body || held_step[lane] + 1 != cache_step) {
+    LaneBodies::Load(lane, model, state);
+    inverse_moment_max[lane] = model.inverse_principal_moments().maxCoeff();
+    held_body[lane] = body;
+  }
   const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
   if (load_stamp[lane] == principal.stamp) return;
   load_stamp[lane] = principal.stamp;
@@ -299,6 +315,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
       const std::size_t body = turned_bodies[group][l];
       if (batch.faults == nullptr || lanes.fault[l] == BodyFault::kNone) {
         lanes.Store(l, &batch.states[body]);
+        lanes.held_step[l] = cache.step();
       } else {
         batch.faults[body] = lanes.fault[l];  // CommitStep's bounds, checked in the lanes
       }
@@ -323,7 +340,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
         turned[group]->damped = damped;
         turned[group]->body_axes = load.has_body_axes();
       }
-      turned[group]->Load(turned_count[group], model, state, load);
+      turned[group]->Load(turned_count[group], body, cache.step(), model, state, load);
       turned_bodies[group][turned_count[group]++] = body;
       if (turned_count[group] == kLanes) flush_turned(group);
     };
