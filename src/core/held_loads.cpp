@@ -29,6 +29,7 @@ void HeldLoads::Clear() {
   force_moment_.setZero();
   has_torque_ = false;
   has_body_axes_ = false;
+  has_force_moment_ = false;
 }
 
 void HeldLoads::AddWorldForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset) {
@@ -37,6 +38,7 @@ void HeldLoads::AddWorldForce(const Eigen::Vector3d& force, const Eigen::Vector3
   force_world_ += force;
   force_moment_ += force * offset.transpose();
   has_torque_ = true;
+  has_force_moment_ = !force_moment_.isZero(0.0);
 }
 
 void HeldLoads::AddBodyForce(const Eigen::Vector3d& force, const Eigen::Vector3d& offset) {
@@ -114,7 +116,7 @@ const HeldLoads::PrincipalParts& HeldLoads::NewPrincipalParts(
 
 double HeldLoads::TurnRate(const Eigen::Matrix3d& R_WB, const Eigen::Vector3d& omega) const {
   // World forces at the COM and world couples do not turn with the body.
-  if (!has_body_axes_ && force_moment_.isZero(0.0)) return 0.0;
+  if (!has_body_axes_ && !has_force_moment_) return 0.0;
   double rate = 0.0;
   const double force_bound = force_world_.norm() + force_body_.norm();
   if (force_bound > 0.0) rate = omega.cross(R_WB * force_body_).norm() / force_bound;

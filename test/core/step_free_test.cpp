@@ -366,9 +366,12 @@ TEST(LoadedLanes, TopsAndSpheresUnderCouplesAtLargeStepsAreStepBodyByBody) {
 
 TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
   // The same bodies under gravity and held particle forces and couples in
-  // world and body axes, every fifth under gravity alone (a constant force:
-  // the free lanes): the World's batches against Step with the same loads,
-  // body by body.
+  // world and body axes, every tenth under gravity alone (a constant force:
+  // the free lanes) and every other fifth under gravity and a world couple,
+  // every seventh also under a body wrench in the other axes (so every
+  // kernel instance of the loaded lanes: with the moment of a world-axes
+  // force, body-axes terms, both or neither): the World's batches against
+  // Step with the same loads, body by body.
   const double dt = 1e-3;
   WorldOptions options;
   options.integrator = GetParam();
@@ -379,6 +382,13 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
   std::vector<HeldLoads> loads(world.size());
   for (std::size_t i = 0; i < world.size(); ++i) {
     loads[i].AddCentralForce(world.model(i).mass() * options.gravity);
+    if (i % 10 == 9) {
+      BodyWrench couple;
+      couple.body = world.id(i);
+      couple.couple = {0.01, -0.02, 0.04};
+      world.HoldBodyWrench(couple);
+      loads[i].AddWorldCouple(couple.couple);
+    }
     if (i % 5 == 4) continue;
     ParticleWrench push;
     push.body = world.id(i);
@@ -395,6 +405,20 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
       loads[i].AddWorldForce(push.force, offset);
       loads[i].AddWorldCouple(push.couple);
     }
+    if (i % 7 != 3) continue;
+    BodyWrench other;
+    other.body = world.id(i);
+    if (push.axes == WrenchAxes::kBody) {
+      other.force = {0.2, 0.1, -0.3};  // world axes, at the COM
+      other.couple = {-0.01, 0.03, 0.02};
+      loads[i].AddCentralForce(other.force);
+      loads[i].AddWorldCouple(other.couple);
+    } else {
+      other.axes = WrenchAxes::kBody;
+      other.force = {0.2, 0.1, -0.3};
+      loads[i].AddBodyForce(other.force, Eigen::Vector3d::Zero());
+    }
+    world.HoldBodyWrench(other);
   }
   world.Step();  // from here on SubstepsFor sees the held loads
   std::vector<BodyState> expected = world.states();

@@ -52,6 +52,8 @@ class alignas(64) HeldLoads final : public Load {
   bool has_damping() const override { return has_damping_; }
   // Whether a body-axes force or couple was added.
   bool has_body_axes() const { return has_body_axes_; }
+  // Whether C ≠ 0: a world-axes force off the COM.
+  bool has_force_moment() const { return has_force_moment_; }
 
   // The body-axes parts and C in a principal frame P of the body, R_BP the
   // rotation `body_from_principal`: R_BPᵀ F_B, R_BPᵀ τ_B and C R_BP, so that a
@@ -96,6 +98,7 @@ class alignas(64) HeldLoads final : public Load {
   // cache lines; one that copies them reads on to the damping.
   bool has_torque_ = false;
   bool has_body_axes_ = false;
+  bool has_force_moment_ = false;
   bool has_damping_ = false;  // a rate of damping_ is > 0
   bool projects_torque_ = false;
   mutable bool has_principal_parts_ = false;  // principal_parts_ holds for these loads

@@ -27,8 +27,9 @@ struct LoadedLanes;
 class LaneCache {
  public:
   // The loaded lanes' groups (casimir_loaded_lanes.h): by the series or wide
-  // angles, damped or not, with a body-axes part or not.
-  static constexpr std::size_t kLoadedGroups = 8;
+  // angles, damped or not, with a world-axes force off the COM or not, with
+  // a body-axes part or not.
+  static constexpr std::size_t kLoadedGroups = 16;
   // Blocks kept per group: 1,024 bodies, a few hundred kB.
   static constexpr std::size_t kKeptBlocks = 128;
 

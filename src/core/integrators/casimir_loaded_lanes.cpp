@@ -44,13 +44,13 @@ namespace {
 // The loaded Step of casimir_splitting4.cpp, lane by lane, in the principal
 // frame throughout: kick, then three times drift, A B A, the rotation about L
 // and a kick, with neighbouring half kicks merged (they act at the same pose
-// and time). kBodyAxes: as for lanes::LoadOf. kDamped: whether any lane is
-// damped; `decays` then holds each lane's DecayOver for the three sub-steps,
-// which the drift and the rotation apply as DampedDrift and
-// DampedCasimirRotation do. kAngles: the series, or SinCosWide for the axis
+// and time). kBodyAxes, kForceMoment: as for lanes::LoadOf. kDamped:
+// whether any lane is damped; `decays` then holds each lane's DecayOver for
+// the three sub-steps, which the drift and the rotation apply as
+// DampedDrift and DampedCasimirRotation do. kAngles: the series, or SinCosWide for the axis
 // flows and the rotation about L. q stays a unit quaternion to ~1e-16
 // through the products, so it is normalised once, at the end.
-template <bool kBodyAxes, bool kDamped, Angles kAngles>
+template <bool kBodyAxes, bool kForceMoment, bool kDamped, Angles kAngles>
 inline __attribute__((always_inline)) void LoadedStep4(const std::array<double, 3>& substeps,
                                                        const FlowDecays<3>& decays,
                                                        LoadedLanes* lanes) {
@@ -69,12 +69,12 @@ inline __attribute__((always_inline)) void LoadedStep4(const std::array<double, 
       p[k] = b.linear_momentum[k][l];
       L_W[k] = b.angular_momentum[k][l];
     }
-    const lanes::LaneLoad load = lanes::LoadOf<kBodyAxes>(b, l);
+    const lanes::LaneLoad load = lanes::LoadOf<kBodyAxes, kForceMoment>(b, l);
     const double inverse_mass = 1.0 / b.mass[l];
     const double a1 = b.axis1[l], a3 = b.axis3[l], casimir = b.casimir[l];
 
     double m[3];  // Π = R_WPᵀ L
-    lanes::Kick<kBodyAxes>(load, q, kicks[0], p, L_W, m);
+    lanes::Kick<kBodyAxes, kForceMoment>(load, q, kicks[0], p, L_W, m);
     for (int s = 0; s < 3; ++s) {
       double drift_s = substeps[s], spin_s = substeps[s];
       if constexpr (kDamped) {
@@ -92,7 +92,7 @@ inline __attribute__((always_inline)) void LoadedStep4(const std::array<double, 
           L_W[k] *= decays.angular_factor[s][l];
         }
       }
-      lanes::Kick<kBodyAxes>(load, q, kicks[s + 1], p, L_W, m);
+      lanes::Kick<kBodyAxes, kForceMoment>(load, q, kicks[s + 1], p, L_W, m);
     }
 
     lanes::StoreStep(l, x, p, L_W,
@@ -107,10 +107,11 @@ inline __attribute__((always_inline)) void LoadedStep4For(double h, LoadedLanes*
   const std::array<double, 3> substeps = {outer, kYoshidaInnerWeight * h, outer};
   StepForFlags(
       substeps, lanes,
-      [&](auto body_axes, auto damped, const FlowDecays<3>& decays) __attribute__((always_inline)) {
-        LoadedStep4<decltype(body_axes)::value, decltype(damped)::value, kAngles>(substeps, decays,
-                                                                                  lanes);
-      });
+      [&](auto body_axes, auto force_moment, auto damped, const FlowDecays<3>& decays)
+          __attribute__((always_inline)) {
+            LoadedStep4<decltype(body_axes)::value, decltype(force_moment)::value,
+                        decltype(damped)::value, kAngles>(substeps, decays, lanes);
+          });
 }
 
 }  // namespace

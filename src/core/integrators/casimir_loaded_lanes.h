@@ -52,8 +52,10 @@ struct LoadedLanes : LaneBodies {
   std::size_t held_body[kLanes];
   std::uint64_t held_step[kLanes] = {};
   // The kernel instance the lanes take, set by whoever fills them: whether
-  // their bodies may hold a body-axes force or couple, and be damped.
+  // their bodies may hold a body-axes force or couple, a world-axes force
+  // off the COM (C ≠ 0), and be damped.
   bool body_axes = false;
+  bool force_moment = false;
   bool damped = false;
 
   LoadedLanes() { std::fill(std::begin(held_body), std::end(held_body), kNoBody); }
@@ -105,14 +107,16 @@ inline void LoadedLanes::Store(std::size_t lane, BodyState* state) const {
 
 namespace lanes {
 
-// One lane's load parts, as LoadedLanes holds them; the body-axes ones only
-// with kBodyAxes (whether the lanes hold a body-axes force or couple;
-// without, their terms are left out).
+// One lane's load parts, as LoadedLanes holds them: the body-axes ones
+// (F_P, τ_P) only with kBodyAxes and the moment C_P only with kForceMoment,
+// the terms a kernel instance evaluates (LoadedLanes::body_axes,
+// force_moment); without, the lanes' bodies hold none and their terms are
+// left out.
 struct LaneLoad {
   double force_world[3], force_principal[3], torque_world[3], torque_principal[3], moment[9];
 };
 
-template <bool kBodyAxes>
+template <bool kBodyAxes, bool kForceMoment>
 inline __attribute__((always_inline)) LaneLoad LoadOf(const LoadedLanes& b, std::size_t l) {
   LaneLoad load{};
   for (int k = 0; k < 3; ++k) {
@@ -123,24 +127,32 @@ inline __attribute__((always_inline)) LaneLoad LoadOf(const LoadedLanes& b, std:
       load.torque_principal[k] = b.torque_principal[k][l];
     }
   }
-  for (int k = 0; k < 9; ++k) load.moment[k] = b.moment[k][l];
+  if constexpr (kForceMoment) {
+    for (int k = 0; k < 9; ++k) load.moment[k] = b.moment[k][l];
+  }
   return load;
 }
 
 // p += w F, L += w τ at the orientation q = R_WP of the principal frame,
 // and Π = R_WPᵀ L after it, from the kick's R_WP (cheaper than from q).
-template <bool kBodyAxes>
+template <bool kBodyAxes, bool kForceMoment>
 inline __attribute__((always_inline)) void Kick(const LaneLoad& load, const Quaternion& q, double w,
                                                 double p[3], double L_W[3],
                                                 double body_momentum[3]) {
   double R_WP[9];
   RotationMatrix(q, R_WP);
-  // M = C_P R_WPᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
-  const double* c = load.moment;
-  const auto m = [&](int i, int j) __attribute__((always_inline)) {
-    return c[3 * i] * R_WP[3 * j] + c[3 * i + 1] * R_WP[3 * j + 1] + c[3 * i + 2] * R_WP[3 * j + 2];
-  };
-  const double moment_torque[3] = {m(2, 1) - m(1, 2), m(0, 2) - m(2, 0), m(1, 0) - m(0, 1)};
+  double moment_torque[3] = {0.0, 0.0, 0.0};
+  if constexpr (kForceMoment) {
+    // M = C_P R_WPᵀ: only its off-diagonal entries enter vee(M − Mᵀ).
+    const double* c = load.moment;
+    const auto m = [&](int i, int j) __attribute__((always_inline)) {
+      return c[3 * i] * R_WP[3 * j] + c[3 * i + 1] * R_WP[3 * j + 1] +
+             c[3 * i + 2] * R_WP[3 * j + 2];
+    };
+    moment_torque[0] = m(2, 1) - m(1, 2);
+    moment_torque[1] = m(0, 2) - m(2, 0);
+    moment_torque[2] = m(1, 0) - m(0, 1);
+  }
   for (int k = 0; k < 3; ++k) {
     double force = load.force_world[k], torque = load.torque_world[k] + moment_torque[k];
     if constexpr (kBodyAxes) {
@@ -221,10 +233,20 @@ struct FlowDecays {
   double angular_factor[flows][kLanes], angular_elapsed_s[flows][kLanes];
 };
 
-// step(body_axes, damped, decays), the flags as std::bool_constant: the
-// kernel instance for the lanes' flags, with the damping's exponentials for
-// free flows of flow_s [s] taken outside its lane loop, which then stays
-// free of calls; then the lanes' faults.
+// f(std::bool_constant<flag>{}).
+template <typename F>
+inline __attribute__((always_inline)) void WithFlag(bool flag, F f) {
+  if (flag) {
+    f(std::true_type{});
+  } else {
+    f(std::false_type{});
+  }
+}
+
+// step(body_axes, force_moment, damped, decays), the lanes' flags as
+// std::bool_constant: the kernel instance for the lanes' flags, with the
+// damping's exponentials for free flows of flow_s [s] taken outside its lane
+// loop, which then stays free of calls; then the lanes' faults.
 template <std::size_t flows, typename Step>
 inline __attribute__((always_inline)) void StepForFlags(const std::array<double, flows>& flow_s,
                                                         LoadedLanes* lanes, Step step) {
@@ -240,16 +262,17 @@ inline __attribute__((always_inline)) void StepForFlags(const std::array<double,
         decays.angular_elapsed_s[i][l] = angular.elapsed_s;
       }
     }
-    if (lanes->body_axes) {
-      step(std::true_type{}, std::true_type{}, decays);
-    } else {
-      step(std::false_type{}, std::true_type{}, decays);
-    }
-  } else if (lanes->body_axes) {
-    step(std::true_type{}, std::false_type{}, decays);
-  } else {
-    step(std::false_type{}, std::false_type{}, decays);
   }
+  WithFlag(
+      lanes->body_axes, [&](auto body_axes) __attribute__((always_inline)) {
+        WithFlag(
+            lanes->force_moment, [&](auto force_moment) __attribute__((always_inline)) {
+              WithFlag(
+                  lanes->damped, [&](auto damped) __attribute__((always_inline)) {
+                    step(body_axes, force_moment, damped, decays);
+                  });
+            });
+      });
   lanes::FindFaults(lanes);
 }
 
@@ -294,11 +317,12 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     });
   };
   // Bodies under a load that depends on the orientation, in groups by their
-  // angles (the series or wide), whether they are damped and whether they
-  // hold a body-axes part: the kernel instance a group runs then is the one
-  // each of its bodies calls for, so that a body's result does not depend on
-  // which bodies share its lanes (a damped instance rounds an undamped lane's
-  // kick differently), and so not on the batches or threads of the World.
+  // angles (the series or wide), whether they are damped, hold a world-axes
+  // force off the COM and hold a body-axes part: the kernel instance a group
+  // runs then is the one each of its bodies calls for, so that a body's
+  // result does not depend on which bodies share its lanes (a damped
+  // instance rounds an undamped lane's kick differently), and so not on the
+  // batches or threads of the World.
   constexpr std::size_t kGroups = LaneCache::kLoadedGroups;
   constexpr std::size_t kWideGroups = kGroups / 2;  // the first group of wide angles
   LaneCache call_cache;
@@ -334,10 +358,12 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     // The group by branches, not by arithmetic on the fit: a predicted
     // branch lets the copy into the lanes start before the fit is computed.
     const auto turn_in = [&](std::size_t angles_group) __attribute__((always_inline)) {
-      const std::size_t group = angles_group + (damped ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
+      const std::size_t group = angles_group + (damped ? 4 : 0) +
+                                (load.has_force_moment() ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
       if (turned[group] == nullptr) {
         turned[group] = &cache.NextLoadedBlock(group);
         turned[group]->damped = damped;
+        turned[group]->force_moment = load.has_force_moment();
         turned[group]->body_axes = load.has_body_axes();
       }
       turned[group]->Load(turned_count[group], body, cache.step(), model, state, load);

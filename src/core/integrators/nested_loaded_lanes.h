@@ -63,12 +63,13 @@ inline __attribute__((always_inline)) void TurnLanes(NestedLaneState* s, Turn tu
   }
 }
 
-// The step. kBodyAxes as for lanes::LoadOf; kDamped: whether any lane is
-// damped (then `decays` holds each lane's decays, which the free flows apply
-// as NestedStep does); kAngles: the series or SinCosWide. Π is found again
+// The step. kBodyAxes, kForceMoment as for lanes::LoadOf; kDamped: whether
+// any lane is damped (then `decays` holds each lane's decays, which the free
+// flows apply as NestedStep does); kAngles: the series or SinCosWide. Π is found again
 // after each kick, from its R_WP; q stays a unit quaternion to ~1e-16
 // through the products and is normalised once, at the end.
-template <bool kBodyAxes, bool kDamped, lanes::Angles kAngles, std::size_t m, std::size_t n>
+template <bool kBodyAxes, bool kForceMoment, bool kDamped, lanes::Angles kAngles, std::size_t m,
+          std::size_t n>
 inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<m>& outer,
                                                             const AxisSplitting<n>& inner, double h,
                                                             const FlowDecays<m + 1>& decays,
@@ -134,8 +135,8 @@ inline __attribute__((always_inline)) void NestedLoadedStep(const KickSplitting<
       double p[3] = {s.p[0][l], s.p[1][l], s.p[2][l]};
       double L_W[3] = {s.L_W[0][l], s.L_W[1][l], s.L_W[2][l]};
       double body_momentum[3];
-      lanes::Kick<kBodyAxes>(lanes::LoadOf<kBodyAxes>(b, l), q, outer.kick[i] * h, p, L_W,
-                             body_momentum);
+      lanes::Kick<kBodyAxes, kForceMoment>(lanes::LoadOf<kBodyAxes, kForceMoment>(b, l), q,
+                                           outer.kick[i] * h, p, L_W, body_momentum);
       for (int k = 0; k < 3; ++k) {
         s.p[k][l] = p[k];
         s.L_W[k][l] = L_W[k];
@@ -167,10 +168,10 @@ inline __attribute__((always_inline)) void NestedLoadedLanes(const KickSplitting
   for (std::size_t i = 0; i <= m; ++i) flow_s[i] = outer.drift[i] * h;
   StepForFlags(
       flow_s, lanes,
-      [&](auto body_axes, auto damped, const FlowDecays<m + 1>& decays)
+      [&](auto body_axes, auto force_moment, auto damped, const FlowDecays<m + 1>& decays)
           __attribute__((always_inline)) {
-            NestedLoadedStep<decltype(body_axes)::value, decltype(damped)::value, kAngles>(
-                outer, inner, h, decays, lanes);
+            NestedLoadedStep<decltype(body_axes)::value, decltype(force_moment)::value,
+                             decltype(damped)::value, kAngles>(outer, inner, h, decays, lanes);
           });
 }
 
