@@ -77,6 +77,12 @@ class alignas(64) HeldLoads final : public Load {
                ? principal_parts_
                : NewPrincipalParts(body_from_principal);
   }
+  // The stamp of the parts InPrincipalFrame keeps, or 0 while it keeps none:
+  // whoever holds parts of this stamp, got in the frame it asked for then,
+  // holds what it would get for that frame now.
+  std::uint64_t kept_principal_stamp() const {
+    return has_principal_parts_ ? principal_parts_.stamp : 0;
+  }
 
   // The reduced parts, for kernels that evaluate At themselves.
   const Eigen::Vector3d& force_world() const { return force_world_; }

@@ -13,6 +13,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <iterator>
+#include <optional>
 #include <type_traits>
 #include <vector>
 
@@ -76,7 +77,11 @@ struct LoadedLanes : LaneBodies {
 inline void LoadedLanes::Load(std::size_t lane, std::size_t body, std::uint64_t cache_step,
                               const BodyModel& model, const BodyState& state,
                               const HeldLoads& loads) {
-  if (held_body[lane] != body || held_step[lane] + 1 != cache_step) {
+  if (held_body[lane] == body && held_step[lane] + 1 == cache_step) {
+    // The lane's last load parts came from this body's frame, which has not
+    // changed since.
+    if (load_stamp[lane] == loads.kept_principal_stamp()) return;
+  } else {
     LaneBodies::Load(lane, model, state);
     inverse_moment_max[lane] = model.inverse_principal_moments().maxCoeff();
     held_body[lane] = body;
@@ -325,8 +330,8 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
   // batches or threads of the World.
   constexpr std::size_t kGroups = LaneCache::kLoadedGroups;
   constexpr std::size_t kWideGroups = kGroups / 2;  // the first group of wide angles
-  LaneCache call_cache;
-  LaneCache& cache = batch.lane_cache != nullptr ? *batch.lane_cache : call_cache;
+  std::optional<LaneCache> call_cache;
+  LaneCache& cache = batch.lane_cache != nullptr ? *batch.lane_cache : call_cache.emplace();
   LoadedLanes* turned[kGroups] = {};  // each group's block being filled
   std::size_t turned_bodies[kGroups][kLanes];
   std::size_t turned_count[kGroups] = {};
