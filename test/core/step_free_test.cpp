@@ -515,12 +515,7 @@ TEST_P(EveryScheme, SubsteppedBodiesInBatchesAreStepBodyByBody) {
   std::vector<BodyModel> models;
   std::vector<BodyState> states;
   for (int i = 0; i < 24; ++i) {
-    const BodyModel body = test::Diag123Body();
-    std::vector<Particle> particles;
-    for (std::size_t p = 0; p < body.particle_count(); ++p) {
-      particles.push_back({body.particle_masses()[p], body.particle_offsets()[p]});
-    }
-    models.emplace_back("body" + std::to_string(i), particles);
+    models.push_back(test::Diag123Body("body" + std::to_string(i)));
     BodyState state;
     state.position = {0.1 * i, 0.0, 0.0};
     state.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d::UnitZ()));
@@ -701,12 +696,7 @@ TEST_P(EveryScheme, StatesWrittenBetweenStepsAreWhereTheNextStepStarts) {
   std::vector<BodyModel> models;
   std::vector<BodyState> states;
   for (int i = 0; i < 16; ++i) {
-    const BodyModel body = test::Diag123Body();
-    std::vector<Particle> particles;
-    for (std::size_t p = 0; p < body.particle_count(); ++p) {
-      particles.push_back({body.particle_masses()[p], body.particle_offsets()[p]});
-    }
-    models.emplace_back("spun" + std::to_string(i), particles);
+    models.push_back(test::Diag123Body("spun" + std::to_string(i)));
     BodyState state;
     state.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.1 * i, Eigen::Vector3d::UnitZ()));
     state.angular_momentum = {0.3, 6.0, 0.2};  // about 0.6 rad a step of 0.1 s

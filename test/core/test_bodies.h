@@ -15,10 +15,10 @@ namespace rigid_body_sim::core::test {
 
 // Four unit masses at ±a e_x, ±b e_y (a = 1 m, b = √½ m): a flat body with
 // Ī = diag(1, 2, 3) kg m² in its own axes, the headline scene's Dzhanibekov body.
-inline BodyModel Diag123Body() {
+inline BodyModel Diag123Body(const std::string& name = "diag123") {
   const double a = 1.0;
   const double b = std::sqrt(0.5);
-  return BodyModel("diag123",
+  return BodyModel(name,
                    {{1.0, {a, 0, 0}}, {1.0, {-a, 0, 0}}, {1.0, {0, b, 0}}, {1.0, {0, -b, 0}}});
 }
 
