@@ -11,7 +11,7 @@
 // writes one of their states outside the steps, or moves them to other
 // indices, calls ForgetStates before the next step. Only the first blocks
 // of each group are kept: past them, kept blocks would stream through
-// memory (~2.9 kB per eight bodies) where one reused block stays in cache.
+// memory (~3 kB per eight bodies) where one reused block stays in cache.
 #pragma once
 
 #include <array>

@@ -47,9 +47,10 @@ namespace {
 // and time). kBodyAxes, kForceMoment: as for lanes::LoadOf. kDamped:
 // whether any lane is damped; `decays` then holds each lane's DecayOver for
 // the three sub-steps, which the drift and the rotation apply as
-// DampedDrift and DampedCasimirRotation do. kAngles: the series, or SinCosWide for the axis
-// flows and the rotation about L. q stays a unit quaternion to ~1e-16
-// through the products, so it is normalised once, at the end.
+// DampedDrift and DampedCasimirRotation do. kAngles: the series, or
+// SinCosWide for the axis flows and the rotation about L. q stays a unit
+// quaternion to ~1e-16 through the products, so it is normalised once, at
+// the end.
 template <bool kBodyAxes, bool kForceMoment, bool kDamped, Angles kAngles>
 inline __attribute__((always_inline)) void LoadedStep4(const std::array<double, 3>& substeps,
                                                        const FlowDecays<3>& decays,
