@@ -46,9 +46,9 @@ struct LoadedLanes : LaneBodies {
   // The HeldLoads::PrincipalParts::stamp of the load parts each lane holds;
   // 0: none (stamps start at 1).
   std::uint64_t load_stamp[kLanes] = {};
-  // The body (its index) whose state and model parts each lane holds, and
-  // the LaneCache::step in which the lane wrote that state back; kNoBody:
-  // none.
+  // The body (its index) whose state and model parts each lane holds, the
+  // one Load gave it last, and the LaneCache::step in which the lane wrote
+  // that state back; kNoBody: none.
   static constexpr std::size_t kNoBody = ~std::size_t{0};
   std::size_t held_body[kLanes];
   std::uint64_t held_step[kLanes] = {};
@@ -333,7 +333,6 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
   std::optional<LaneCache> call_cache;
   LaneCache& cache = batch.lane_cache != nullptr ? *batch.lane_cache : call_cache.emplace();
   LoadedLanes* turned[kGroups] = {};  // each group's block being filled
-  std::size_t turned_bodies[kGroups][kLanes];
   std::size_t turned_count[kGroups] = {};
   const auto flush_turned = [&](std::size_t group) {
     LoadedLanes& lanes = *turned[group];
@@ -341,7 +340,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     if (count < kLanes) lanes.FillIdle(count);
     (group < kWideGroups ? loaded_lanes.series : loaded_lanes.wide)(dt_s, &lanes);
     for (std::size_t l = 0; l < count; ++l) {
-      const std::size_t body = turned_bodies[group][l];
+      const std::size_t body = lanes.held_body[l];  // set by Load
       if (batch.faults == nullptr || lanes.fault[l] == BodyFault::kNone) {
         lanes.Store(l, &batch.states[body]);
         lanes.held_step[l] = cache.step();
@@ -372,8 +371,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
         turned[group]->body_axes = load.has_body_axes();
       }
       turned[group]->Load(turned_count[group], body, cache.step(), model, state, load);
-      turned_bodies[group][turned_count[group]++] = body;
-      if (turned_count[group] == kLanes) flush_turned(group);
+      if (++turned_count[group] == kLanes) flush_turned(group);
     };
     if (queue != nullptr) {
       if (queue->Add(body, model, state)) flush_pulled(*queue);
