@@ -1,5 +1,6 @@
 // StateFault: the bounds a stepped state must keep, in their order.
 #include <limits>
+#include <string>
 
 #include <gtest/gtest.h>
 
