@@ -144,7 +144,7 @@ void World::Step() {
     share.frozen = 0;
     share.dropped_couples = 0;
     share.substeps_max = 1;
-    share.lane_cache.StartStep();
+    share.lane_cache.StartStep(!loads_changed);
   }
   auto step_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
     StepBlock(begin, end, &shares_[member]);

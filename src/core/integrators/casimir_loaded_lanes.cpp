@@ -11,11 +11,26 @@ LaneCache::~LaneCache() = default;
 LaneCache::LaneCache(LaneCache&&) noexcept = default;
 LaneCache& LaneCache::operator=(LaneCache&&) noexcept = default;
 
-LoadedLanes& LaneCache::NextLoadedBlock(std::size_t group) {
-  std::vector<std::unique_ptr<LoadedLanes>>& blocks = loaded_blocks_[group];
-  const std::size_t next = std::min(next_loaded_[group]++, kKeptBlocks);
-  if (next == blocks.size()) blocks.push_back(std::make_unique<LoadedLanes>());
-  return *blocks[next];
+void LaneCache::AddLoadedBlock(std::size_t group) {
+  loaded_blocks_[group].push_back(std::make_unique<LoadedLanes>());
+}
+
+LaneCache::BatchPlace LaneCache::NextBatch(const std::size_t* bodies_begin,
+                                           const std::size_t* bodies_end, bool within_bound) {
+  if (next_record_ == records_.size()) records_.emplace_back();
+  BatchRecord& record = records_[next_record_++];
+  const bool replays =
+      within_bound && loads_kept_ && record.replayable && record.step + 1 == step_ &&
+      record.blocks_before == next_loaded_ &&
+      std::equal(bodies_begin, bodies_end, record.bodies.begin(), record.bodies.end());
+  record.step = step_;
+  if (!replays) {
+    record.pulled.clear();
+    record.flushes.clear();
+    record.blocks_before = next_loaded_;
+    record.replayable = within_bound;
+  }
+  return {record, replays};
 }
 
 using lanes::Angles;

@@ -304,7 +304,10 @@ struct LoadedLaneKernels {
 // of the free lanes. Other bodies that fit take the `loaded_lanes` kernel of
 // their angles, the rest `step_one(model, load, dt_s, state)` (too fast for
 // the lanes, or too strongly damped). The blocks of loaded lanes come from
-// batch.lane_cache (or, without one, from a cache of this call alone).
+// batch.lane_cache (or, without one, from a cache of this call alone). A
+// batch that replays the cache's record of its place (LaneCache::NextBatch)
+// steps the record's pulled bodies and blocks of lanes again, which hold
+// each body's state and load parts already.
 template <typename StepOne>
 void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernels& free_lanes,
                        const LoadedLaneKernels& loaded_lanes, StepOne step_one) {
@@ -334,9 +337,12 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
   LaneCache& cache = batch.lane_cache != nullptr ? *batch.lane_cache : call_cache.emplace();
   LoadedLanes* turned[kGroups] = {};  // each group's block being filled
   std::size_t turned_count[kGroups] = {};
+  const LaneCache::BatchPlace place = cache.NextBatch(batch.begin(), batch.end(), fit_known);
+  LaneCache::BatchRecord& record = place.record;
   const auto flush_turned = [&](std::size_t group) {
     LoadedLanes& lanes = *turned[group];
     const std::size_t count = turned_count[group];
+    if (!place.replays && record.replayable) record.flushes.push_back({group, count});
     if (count < kLanes) lanes.FillIdle(count);
     (group < kWideGroups ? loaded_lanes.series : loaded_lanes.wide)(dt_s, &lanes);
     for (std::size_t l = 0; l < count; ++l) {
@@ -351,6 +357,22 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     turned[group] = nullptr;
     turned_count[group] = 0;
   };
+  const auto pull = [&](FreeLaneQueue* queue, std::size_t body) {
+    if (queue->Add(body, batch.models[body], batch.states[body])) flush_pulled(*queue);
+  };
+  if (place.replays) {
+    for (const std::size_t body : record.pulled) {
+      pull(pulled.For(batch.models[body], batch.states[body], dt_s, batch.within_one_step_bound),
+           body);
+    }
+    for (const LaneCache::BatchRecord::Flush& flush : record.flushes) {
+      turned[flush.group] = &cache.NextLoadedBlock(flush.group);
+      turned_count[flush.group] = flush.count;
+      flush_turned(flush.group);
+    }
+    pulled.FlushAll(flush_pulled);
+    return;
+  }
   for (const std::size_t body : batch) {
     const BodyModel& model = batch.models[body];
     const HeldLoads& load = batch.loads[body];
@@ -366,6 +388,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
                                 (load.has_force_moment() ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
       if (turned[group] == nullptr) {
         turned[group] = &cache.NextLoadedBlock(group);
+        record.replayable = record.replayable && cache.LastBlockKept(group);
         turned[group]->damped = damped;
         turned[group]->force_moment = load.has_force_moment();
         turned[group]->body_axes = load.has_body_axes();
@@ -374,13 +397,15 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
       if (++turned_count[group] == kLanes) flush_turned(group);
     };
     if (queue != nullptr) {
-      if (queue->Add(body, model, state)) flush_pulled(*queue);
+      if (record.replayable) record.pulled.push_back(body);
+      pull(queue, body);
     } else if (const bool damping_fits = !damped || DampingFitsLoadedLanes(load.damping(), dt_s);
                damping_fits && (fit_known || FitsLoadedLanes(model, state, load, dt_s, reach))) {
       turn_in(0);
     } else if (damping_fits && FitsLoadedWideLanes(model, state, load, dt_s, reach)) {
       turn_in(kWideGroups);
     } else {
+      record.replayable = false;
       BodyState next = state;
       step_one(model, load, dt_s, &next);
       CommitStep(batch, body, next);
@@ -390,6 +415,7 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
   for (std::size_t group = 0; group < kGroups; ++group) {
     if (turned_count[group] > 0) flush_turned(group);
   }
+  if (record.replayable) record.bodies.assign(batch.begin(), batch.end());
 }
 
 }  // namespace rigid_body_sim::core
