@@ -30,7 +30,7 @@ struct LoadedLanes;
 
 class LaneCache {
  public:
-  // The loaded lanes' groups (casimir_loaded_lanes.h): by the series or wide
+  // The loaded lanes' groups (step_loaded_in_lanes.h): by the series or wide
   // angles, damped or not, with a world-axes force off the COM or not, with
   // a body-axes part or not.
   static constexpr std::size_t kLoadedGroups = 16;

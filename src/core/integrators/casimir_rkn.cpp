@@ -4,6 +4,7 @@
 #include "casimir_loaded_lanes.h"
 #include "compositions.h"
 #include "nested_loaded_lanes.h"
+#include "step_loaded_in_lanes.h"
 
 namespace rigid_body_sim::core {
 namespace {

@@ -4,6 +4,7 @@
 #include "casimir_loaded_lanes.h"
 #include "casimir_step.h"
 #include "compositions.h"
+#include "step_loaded_in_lanes.h"
 #include "step_parts.h"
 
 namespace rigid_body_sim::core {
