@@ -47,7 +47,8 @@ Scene ForcedRandomBody() {
 
 }  // namespace
 
-std::vector<AppliedForce> ForcesAt(const Scene& scene, double t_s, const Eigen::Matrix3d& rotation) {
+std::vector<AppliedForce> ForcesAt(const Scene& scene, double t_s,
+                                   const Eigen::Matrix3d& rotation) {
   std::vector<AppliedForce> applied;
   applied.reserve(scene.forces.size());
   for (const SinusoidalForce& f : scene.forces) {

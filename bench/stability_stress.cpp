@@ -82,18 +82,9 @@ long Steps(double full) { return std::max(1L, std::lround(full * g_scale)); }
 
 // ---- bodies ----------------------------------------------------------------
 
-
-
-
-
 BodyModel BoxBody() { return BodyModel("box", MakeBox(1.0, {0.1, 0.2, 0.3}, 2)); }
 
-
 // ---- measurements ------------------------------------------------------------
-
-
-
-
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since).count();
@@ -186,17 +177,18 @@ SpinRun RunSpin(const Integrator& integrator, const BodyModel& body, const BodyS
     double& half = 2 * n <= run.steps ? run.energy_first : run.energy_second;
     half = std::max(half, error);
     if (n == one_second) {
-      run.angle_1s = test::AngleBetween(ExactFreeBodyState(body, initial, n * kDt).orientation, s.orientation);
+      run.angle_1s =
+          test::AngleBetween(ExactFreeBodyState(body, initial, n * kDt).orientation, s.orientation);
     }
   }
   return run;
 }
 
 struct SpinSummary {
-  double threshold = 0.0;      // largest h|ω| of the grid with energy_1s < 1e-3 for all smaller
-  double energy_at_1 = 0.0;    // energy_1s at h|ω| = 1, worst direction
-  double growth_max = 0.0;     // max energy_second / energy_first (points with energy_first > 1e-12)
-  double growth_at_1 = 0.0;    // ... at h|ω| = 1, worst direction
+  double threshold = 0.0;    // largest h|ω| of the grid with energy_1s < 1e-3 for all smaller
+  double energy_at_1 = 0.0;  // energy_1s at h|ω| = 1, worst direction
+  double growth_max = 0.0;   // max energy_second / energy_first (points with energy_first > 1e-12)
+  double growth_at_1 = 0.0;  // ... at h|ω| = 1, worst direction
   double angle_at[3] = {0, 0, 0};  // orientation error at 1 s, h|ω| = 0.01, 0.1, 1, worst direction
   bool finite = true;
 };
@@ -204,7 +196,8 @@ struct SpinSummary {
 SpinSummary SpinSweep(const std::string& name, Csv* csv, Table* detail) {
   const auto integrator = MakeIntegrator(name);
   const BodyModel body = test::Diag123Body();
-  const Vector3d directions[2] = {Vector3d(1, 1, 1).normalized(), Vector3d(0.01, 1, 0.01).normalized()};
+  const Vector3d directions[2] = {Vector3d(1, 1, 1).normalized(),
+                                  Vector3d(0.01, 1, 0.01).normalized()};
   const char* direction_names[2] = {"generic", "near_axis2"};
   SpinSummary summary;
   bool below = true;
@@ -214,8 +207,9 @@ SpinSummary SpinSweep(const std::string& name, Csv* csv, Table* detail) {
     const double h_omega = kDt * omega;
     double worst_1s = 0.0;
     for (int d = 0; d < 2; ++d) {
-      const BodyState initial = StateFromTwist(body, Vector3d::Zero(), test::kTilt, Vector3d::Zero(),
-                                               test::kTilt * (omega * directions[d]));
+      const BodyState initial =
+          StateFromTwist(body, Vector3d::Zero(), test::kTilt, Vector3d::Zero(),
+                         test::kTilt * (omega * directions[d]));
       // --quick: fewer periods, never shorter than 1 s.
       const SpinRun run = RunSpin(*integrator, body, initial, 1.0, g_scale < 1.0 ? 2 : 10);
       const std::string c = std::string(direction_names[d]) + "_hw=" + Num(h_omega, 3);
@@ -239,8 +233,8 @@ SpinSummary SpinSweep(const std::string& name, Csv* csv, Table* detail) {
       }
       if (k % 10 == 0) {
         detail->rows.push_back({name, direction_names[d], Num(h_omega), std::to_string(run.steps),
-                                run.finite ? "yes" : "**no**", Num(run.energy_1s), Num(run.energy_first),
-                                Num(run.energy_second), Num(run.angle_1s)});
+                                run.finite ? "yes" : "**no**", Num(run.energy_1s),
+                                Num(run.energy_first), Num(run.energy_second), Num(run.angle_1s)});
       }
     }
     below = below && worst_1s < 1e-3;
@@ -258,8 +252,8 @@ struct FreeCaseResult {
   double h_omega = 0.0;
 };
 
-FreeCaseResult RunFree(const Integrator& integrator, const BodyModel& body, const BodyState& initial,
-                       long steps) {
+FreeCaseResult RunFree(const Integrator& integrator, const BodyModel& body,
+                       const BodyState& initial, long steps) {
   FreeCaseResult r;
   r.h_omega = kDt * AngularVelocity(body, initial).norm();
   const double e0 = KineticEnergy(body, initial);
@@ -273,10 +267,10 @@ FreeCaseResult RunFree(const Integrator& integrator, const BodyModel& body, cons
     }
     r.energy = std::max(r.energy, std::abs(KineticEnergy(body, s) / e0 - 1.0));
   }
-  r.angle = test::AngleBetween(ExactFreeBodyState(body, initial, steps * kDt).orientation, s.orientation);
+  r.angle =
+      test::AngleBetween(ExactFreeBodyState(body, initial, steps * kDt).orientation, s.orientation);
   return r;
 }
-
 
 // How far L leaves the range of I for a rank-deficient body (0 when full rank):
 // max(|L·n|/|L| over null axes n, |I ω − L|/|L|); for a single particle |L| itself.
@@ -296,7 +290,8 @@ RangeError RangeErrorOf(const BodyModel& m, const BodyState& s) {
   if (norm == 0.0) return e;
   const Matrix3d a = s.orientation.toRotationMatrix() * m.principal_axes().toRotationMatrix();
   for (int k = 0; k < 3; ++k) {
-    if (m.principal_moments()[k] == 0.0) e.along_null_axis = std::max(e.along_null_axis, std::abs(a.col(k).dot(l)) / norm);
+    if (m.principal_moments()[k] == 0.0)
+      e.along_null_axis = std::max(e.along_null_axis, std::abs(a.col(k).dot(l)) / norm);
   }
   e.inertia_times_omega = (WorldInertia(m, s) * AngularVelocity(m, s) - l).norm() / norm;
   return e;
@@ -340,7 +335,8 @@ struct LongRun {
 };
 
 // Steps in blocks of kBlock between diagnostics; only the stepping is timed.
-LongRun RunLong(const Integrator& integrator, const BodyModel& body, const BodyState& initial, long steps) {
+LongRun RunLong(const Integrator& integrator, const BodyModel& body, const BodyState& initial,
+                long steps) {
   constexpr long kBlock = 10;
   LongRun r;
   const double e0 = KineticEnergy(body, initial);
@@ -358,7 +354,8 @@ LongRun RunLong(const Integrator& integrator, const BodyModel& body, const BodyS
     }
     r.orthonormality = std::max(r.orthonormality, test::OrthonormalityError(s));
     r.l_drift = std::max(r.l_drift, std::abs(s.angular_momentum.norm() / l0 - 1.0));
-    r.pi_drift = std::max(r.pi_drift, std::abs((s.orientation.conjugate() * s.angular_momentum).norm() / l0 - 1.0));
+    r.pi_drift = std::max(
+        r.pi_drift, std::abs((s.orientation.conjugate() * s.angular_momentum).norm() / l0 - 1.0));
     const double error = std::abs(KineticEnergy(body, s) / e0 - 1.0);
     double& half = 2 * (n + kBlock) <= steps ? r.energy_first : r.energy_second;
     half = std::max(half, error);
@@ -373,23 +370,25 @@ LongRun RunLong(const Integrator& integrator, const BodyModel& body, const BodyS
 struct RandomRun {
   bool finite = true;
   long first_bad_step = -1;
-  double max_h_omega = 0.0;   // max over steps of h |ω| of the bodies never frozen
-  double max_speed = 0.0;     // max |v| [m/s]
-  double range_error = 0.0;   // max L-in-range error of the rank-deficient bodies
+  double max_h_omega = 0.0;  // max over steps of h |ω| of the bodies never frozen
+  double max_speed = 0.0;    // max |v| [m/s]
+  double range_error = 0.0;  // max L-in-range error of the rank-deficient bodies
   double ns_per_body_step = 0.0;
   std::uint64_t dropped = 0;
-  std::string frozen;         // "body:fault@step" for every body the World froze
+  std::string frozen;  // "body:fault@step" for every body the World froze
   std::vector<std::string> frozen_bodies;
   bool unphysical_fault = false;  // a kNonFinite or kFasterThanLight fault
 };
 
 World RandomWorld(const std::string& name) {
-  std::vector<BodyModel> models = {test::Diag123Body(), BoxBody(), test::RodBody(), test::PointBody(), test::NearRodBody(), test::NeedleBody()};
+  std::vector<BodyModel> models = {test::Diag123Body(), BoxBody(),           test::RodBody(),
+                                   test::PointBody(),   test::NearRodBody(), test::NeedleBody()};
   std::vector<BodyState> states(models.size());
   for (std::size_t i = 0; i < models.size(); ++i) {
-    states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), test::kTilt, Vector3d(0, 0.1, 0), Vector3d(0.3, -1.0, 2.0));
+    states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), test::kTilt, Vector3d(0, 0.1, 0),
+                               Vector3d(0.3, -1.0, 2.0));
   }
-  WorldOptions options;
+  WorldDef options;
   options.integrator = name;
   options.dt_s = kDt;
   options.gravity = {0, 0, -9.81};
@@ -426,8 +425,8 @@ RandomRun RunRandom(const std::string& name, long steps, std::uint64_t seed) {
         if (!reported[b]) {
           reported[b] = 1;
           r.frozen_bodies.push_back(world.model(b).name());
-          r.frozen += (r.frozen.empty() ? "" : ", ") + world.model(b).name() + ":" + ToString(world.fault(b)) +
-                      "@" + std::to_string(n);
+          r.frozen += (r.frozen.empty() ? "" : ", ") + world.model(b).name() + ":" +
+                      ToString(world.fault(b)) + "@" + std::to_string(n);
           r.unphysical_fault = r.unphysical_fault || world.fault(b) == BodyFault::kNonFinite ||
                                world.fault(b) == BodyFault::kFasterThanLight;
         }
@@ -466,15 +465,17 @@ int Main(int argc, char** argv) {
   }
   const auto start = std::chrono::steady_clock::now();
   const std::vector<std::string>& names = IntegratorNames();
-  std::printf("# Stability stress (dt = 1 ms%s)\n", g_scale < 1.0 ? ", --quick: shortened runs" : "");
+  std::printf("# Stability stress (dt = 1 ms%s)\n",
+              g_scale < 1.0 ? ", --quick: shortened runs" : "");
 
   // Summary cells, per scheme.
   std::map<std::string, std::vector<std::string>> summary;
 
   // 1.
-  Table sweep_detail{"1. Spin sweep, I = diag(1, 2, 3), torque-free: runs at h|ω| = 1e-3, 1e-2, 1e-1, 1",
-                     {"scheme", "ω direction", "h|ω|", "steps", "finite", "max ΔE/E, first 1 s",
-                      "max ΔE/E, 1st half", "max ΔE/E, 2nd half", "orientation err at 1 s [rad]"}};
+  Table sweep_detail{
+      "1. Spin sweep, I = diag(1, 2, 3), torque-free: runs at h|ω| = 1e-3, 1e-2, 1e-1, 1",
+      {"scheme", "ω direction", "h|ω|", "steps", "finite", "max ΔE/E, first 1 s",
+       "max ΔE/E, 1st half", "max ΔE/E, 2nd half", "orientation err at 1 s [rad]"}};
   Table sweep{"1. Spin sweep summary (31 points h|ω| = 1e-3..1, both directions)",
               {"scheme", "finite", "largest h|ω| with ΔE/E < 1e-3 (first 1 s)", "ΔE/E at h|ω| = 1",
                "max growth 2nd/1st half", "growth at h|ω| = 1", "orient. err 1 s, h|ω| = 0.01",
@@ -487,19 +488,23 @@ int Main(int argc, char** argv) {
     csv.Add(name, "spin_sweep", "summary", "h_omega_threshold_1e-3", s.threshold);
     csv.Add(name, "spin_sweep", "summary", "energy_rel_err_at_hw1", s.energy_at_1);
     csv.Add(name, "spin_sweep", "summary", "max_growth", s.growth_max);
-    summary[name].push_back(std::string(s.finite ? "finite" : "**NaN**") + "; ΔE/E<1e-3 up to h|ω|=" +
-                            Num(s.threshold) + "; ΔE/E=" + Num(s.energy_at_1) + " at h|ω|=1");
+    summary[name].push_back(std::string(s.finite ? "finite" : "**NaN**") +
+                            "; ΔE/E<1e-3 up to h|ω|=" + Num(s.threshold) +
+                            "; ΔE/E=" + Num(s.energy_at_1) + " at h|ω|=1");
   }
   sweep_detail.Print();
   sweep.Print();
   std::fprintf(stderr, "[%.0f s] spin sweep done\n", Seconds(start));
 
   // 2.
-  Table extreme{"2. Degenerate and extreme bodies, torque-free 10 s (needle λ1/λ3 = 1e-6; near rod I = diag(1e-4, 1, 1.0001))",
-                {"scheme", "body, start", "h|ω|", "finite", "max ΔE/E", "orientation err at 10 s [rad]"}};
-  Table loaded{"2. Collinear rod + single particle in a World, random forces and couples (1e5 steps)",
-               {"scheme", "finite", "max |L·axis|/|L| rod", "max |Iω − L|/|L| rod", "max |L| particle",
-                "dropped couples"}};
+  Table extreme{
+      "2. Degenerate and extreme bodies, torque-free 10 s (needle λ1/λ3 = 1e-6; near rod I = "
+      "diag(1e-4, 1, 1.0001))",
+      {"scheme", "body, start", "h|ω|", "finite", "max ΔE/E", "orientation err at 10 s [rad]"}};
+  Table loaded{
+      "2. Collinear rod + single particle in a World, random forces and couples (1e5 steps)",
+      {"scheme", "finite", "max |L·axis|/|L| rod", "max |Iω − L|/|L| rod", "max |L| particle",
+       "dropped couples"}};
   struct ExtremeCase {
     const char* label;
     BodyModel body;
@@ -529,7 +534,8 @@ int Main(int argc, char** argv) {
     bool all_finite = true;
     for (const ExtremeCase& c : cases) {
       const FreeCaseResult r = RunFree(*integrator, c.body, c.initial, Steps(10000));
-      extreme.rows.push_back({name, c.label, Num(r.h_omega), r.finite ? "yes" : "**no**", Num(r.energy), Num(r.angle)});
+      extreme.rows.push_back({name, c.label, Num(r.h_omega), r.finite ? "yes" : "**no**",
+                              Num(r.energy), Num(r.angle)});
       csv.Add(name, "extreme_bodies", c.label, "h_omega", r.h_omega);
       csv.Add(name, "extreme_bodies", c.label, "finite", r.finite);
       csv.Add(name, "extreme_bodies", c.label, "energy_rel_err_max", r.energy);
@@ -538,16 +544,18 @@ int Main(int argc, char** argv) {
       if (&c == &cases[0] || &c == &cases[1]) cell += (cell.empty() ? "" : ", ") + Num(r.angle);
     }
     const LoadedDegenerate d = RunLoadedDegenerate(name, Steps(100000), 7);
-    loaded.rows.push_back({name, d.finite ? "yes" : "**no**", Num(d.rod_null), Num(d.rod_iw), Num(d.point_l),
-                           std::to_string(d.dropped)});
+    loaded.rows.push_back({name, d.finite ? "yes" : "**no**", Num(d.rod_null), Num(d.rod_iw),
+                           Num(d.point_l), std::to_string(d.dropped)});
     csv.Add(name, "loaded_rod_point", "rod", "max_L_along_axis_rel", d.rod_null);
     csv.Add(name, "loaded_rod_point", "rod", "max_Iw_minus_L_rel", d.rod_iw);
     csv.Add(name, "loaded_rod_point", "point", "max_L", d.point_l);
     csv.Add(name, "loaded_rod_point", "both", "finite", d.finite);
     csv.Add(name, "loaded_rod_point", "both", "dropped_couples", static_cast<double>(d.dropped));
-    summary[name].push_back(std::string(all_finite ? "finite" : "**NaN**") + "; needle angle err " + cell);
+    summary[name].push_back(std::string(all_finite ? "finite" : "**NaN**") + "; needle angle err " +
+                            cell);
     summary[name].push_back(std::string(d.finite ? "finite" : "**NaN**") + "; L·axis/|L| ≤ " +
-                            Num(std::max(d.rod_null, d.rod_iw)) + ", particle |L| = " + Num(d.point_l));
+                            Num(std::max(d.rod_null, d.rod_iw)) +
+                            ", particle |L| = " + Num(d.point_l));
   }
   extreme.Print();
   loaded.Print();
@@ -565,7 +573,8 @@ int Main(int argc, char** argv) {
   const BodyModel diag123 = test::Diag123Body();
   BodyState separatrix;
   separatrix.orientation = test::kTilt;
-  separatrix.angular_momentum = test::kTilt * Vector3d(1.0, 40.0, 3.0);  // ω0 = (1, 20, 1), h|ω| = 0.02
+  separatrix.angular_momentum =
+      test::kTilt * Vector3d(1.0, 40.0, 3.0);  // ω0 = (1, 20, 1), h|ω| = 0.02
   const std::vector<LongCase> long_cases = {
       {"near separatrix, ω0 = (1, 20, 1)", separatrix},
   };
@@ -576,9 +585,9 @@ int Main(int argc, char** argv) {
     bool finite = true;
     for (const LongCase& c : long_cases) {
       const LongRun r = RunLong(*integrator, diag123, c.initial, long_steps);
-      longrun.rows.push_back({name, c.label, r.finite ? "yes" : "**no**", Num(r.orthonormality), Num(r.l_drift),
-                              Num(r.pi_drift), Num(r.energy_first), Num(r.energy_second), Num(r.energy_final),
-                              Fixed(r.ns_per_step, 0)});
+      longrun.rows.push_back({name, c.label, r.finite ? "yes" : "**no**", Num(r.orthonormality),
+                              Num(r.l_drift), Num(r.pi_drift), Num(r.energy_first),
+                              Num(r.energy_second), Num(r.energy_final), Fixed(r.ns_per_step, 0)});
       csv.Add(name, "long_torque_free", c.label, "steps", static_cast<double>(long_steps));
       csv.Add(name, "long_torque_free", c.label, "finite", r.finite);
       csv.Add(name, "long_torque_free", c.label, "orthonormality_max", r.orthonormality);
@@ -593,8 +602,8 @@ int Main(int argc, char** argv) {
       ns = std::max(ns, r.ns_per_step);
       cell += (cell.empty() ? "ΔE/E 2nd half " : " / ") + Num(r.energy_second);
     }
-    summary[name].push_back(std::string(finite ? "finite" : "**NaN**") + "; ‖AᵀA−I‖ ≤ " + Num(orth) + "; " + cell +
-                            "; " + Fixed(ns, 0) + " ns/step");
+    summary[name].push_back(std::string(finite ? "finite" : "**NaN**") + "; ‖AᵀA−I‖ ≤ " +
+                            Num(orth) + "; " + cell + "; " + Fixed(ns, 0) + " ns/step");
     std::fprintf(stderr, "[%.0f s] long run %s done\n", Seconds(start), name.c_str());
   }
   longrun.Print();
@@ -606,9 +615,11 @@ int Main(int argc, char** argv) {
   // seed: that keeps the bench command's time; the default always runs three.
   constexpr double kMoreSeedsUnder_s = 20.0;
   Table random{"4. " + std::to_string(random_steps) +
-                   " steps, 6 bodies, random particle forces ≤ 100 N and couples ≤ 10 N m redrawn every 100 steps",
-               {"scheme", "seed", "finite", "bodies frozen by the World (fault@step)", "max h|ω| (bodies never frozen)",
-                "max |v| [m/s]", "max L-range error", "dropped couples", "ns/body-step"}};
+                   " steps, 6 bodies, random particle forces ≤ 100 N and couples ≤ 10 N m redrawn "
+                   "every 100 steps",
+               {"scheme", "seed", "finite", "bodies frozen by the World (fault@step)",
+                "max h|ω| (bodies never frozen)", "max |v| [m/s]", "max L-range error",
+                "dropped couples", "ns/body-step"}};
   for (const std::string& name : names) {
     bool finite = true;
     double max_h_omega = 0.0;
@@ -616,12 +627,14 @@ int Main(int argc, char** argv) {
     int seeds_run = 0;
     const auto scheme_start = std::chrono::steady_clock::now();
     for (std::uint64_t seed : seeds) {
-      if (seeds_run > 0 && name != kDefaultIntegrator && Seconds(scheme_start) > kMoreSeedsUnder_s) break;
+      if (seeds_run > 0 && name != kDefaultIntegrator && Seconds(scheme_start) > kMoreSeedsUnder_s)
+        break;
       ++seeds_run;
       const RandomRun r = RunRandom(name, random_steps, seed);
-      random.rows.push_back({name, std::to_string(seed), r.finite ? "yes" : "**no** @" + std::to_string(r.first_bad_step),
-                             r.frozen, Num(r.max_h_omega), Num(r.max_speed), Num(r.range_error), std::to_string(r.dropped),
-                             Fixed(r.ns_per_body_step, 0)});
+      random.rows.push_back({name, std::to_string(seed),
+                             r.finite ? "yes" : "**no** @" + std::to_string(r.first_bad_step),
+                             r.frozen, Num(r.max_h_omega), Num(r.max_speed), Num(r.range_error),
+                             std::to_string(r.dropped), Fixed(r.ns_per_body_step, 0)});
       const std::string c = "seed" + std::to_string(seed);
       csv.Add(name, "random_forces", c, "finite", r.finite);
       csv.Add(name, "random_forces", c, "first_bad_step", static_cast<double>(r.first_bad_step));
@@ -637,17 +650,22 @@ int Main(int argc, char** argv) {
     std::string frozen_cell;
     const std::string of_seeds = "/" + std::to_string(seeds_run);
     for (const auto& [body, count] : frozen) {
-      frozen_cell += (frozen_cell.empty() ? "" : ", ") + body + " " + std::to_string(count) + of_seeds;
+      frozen_cell +=
+          (frozen_cell.empty() ? "" : ", ") + body + " " + std::to_string(count) + of_seeds;
     }
-    summary[name].push_back(std::string(finite ? "finite" : "**NaN**") + " (" + std::to_string(seeds_run) +
-                            (seeds_run == 1 ? " seed" : " seeds") + "); spin-aliased freezes: " +
-                            (frozen_cell.empty() ? "none" : frozen_cell) + "; max h|ω| of the others = " + Num(max_h_omega));
+    summary[name].push_back(
+        std::string(finite ? "finite" : "**NaN**") + " (" + std::to_string(seeds_run) +
+        (seeds_run == 1 ? " seed" : " seeds") +
+        "); spin-aliased freezes: " + (frozen_cell.empty() ? "none" : frozen_cell) +
+        "; max h|ω| of the others = " + Num(max_h_omega));
   }
   random.Print();
 
-  Table overview{"Summary: which integrator survives which stress",
-                 {"scheme", "1. spin sweep", "2. needle (ω-, L-generic: orient. err 10 s)", "2. loaded rod + particle",
-                  "3. " + Num(static_cast<double>(long_steps), 1) + " steps torque-free", "4. random forces"}};
+  Table overview{
+      "Summary: which integrator survives which stress",
+      {"scheme", "1. spin sweep", "2. needle (ω-, L-generic: orient. err 10 s)",
+       "2. loaded rod + particle",
+       "3. " + Num(static_cast<double>(long_steps), 1) + " steps torque-free", "4. random forces"}};
   for (const std::string& name : names) {
     std::vector<std::string> row = {name};
     row.insert(row.end(), summary[name].begin(), summary[name].end());

@@ -43,7 +43,7 @@ World MakeWorld(const std::string& integrator, int bodies, bool forced,
     states[i].position = {0.01 * i, 0.0, 0.0};
     if (motion == Motion::kTumbling) states[i].angular_momentum = {0.001, 0.02, 0.001};
   }
-  WorldOptions options;
+  WorldDef options;
   options.integrator = integrator;
   options.threads = threads;
   World world(std::move(models), std::move(states), options);
@@ -113,7 +113,7 @@ World MakeLargeStepWorld(const std::string& integrator, int bodies,
     states[i].position = {0.01 * i, 0.0, 0.0};
     states[i].angular_momentum = {0.05, 0.02, 0.1};
   }
-  WorldOptions options;
+  WorldDef options;
   options.integrator = integrator;
   options.dt_s = 0.1;
   return World(std::move(models), std::move(states), options);
@@ -221,7 +221,7 @@ void BM_WorldStepLoaded(benchmark::State& state, LoadKind kind) {
     states[i].position = {0.01 * i, 0.0, 0.0};
     states[i].angular_momentum = {0.001, 0.02, 0.001};
   }
-  WorldOptions options;
+  WorldDef options;
   if (kind == LoadKind::kGravity) options.gravity = {0.0, 0.0, -9.81};
   World world(std::move(models), std::move(states), options);
   if (kind != LoadKind::kGravity) {
@@ -242,7 +242,7 @@ BENCHMARK_CAPTURE(BM_WorldStepLoaded, body_force, LoadKind::kBodyForce)->Arg(100
 BENCHMARK_CAPTURE(BM_WorldStepLoaded, gravity, LoadKind::kGravity)->Arg(1000);
 
 // 100,000 tumbling boxes, torque-free or each pushed at one particle (half in
-// world, half in body axes), stepped by 1 and by 2 threads (WorldOptions::
+// world, half in body axes), stepped by 1 and by 2 threads (WorldDef::
 // threads). The counter is wall-clock time; the CPU column is the whole
 // process's, so that 2 threads with the CPU time of 1 show the work split
 // without overhead even where other processes share the cores.
@@ -306,7 +306,7 @@ void BM_WorstStepAtMaxSubsteps(benchmark::State& state) {
     states[i].position = {0.01 * i, 0.0, 0.0};
     states[i].angular_momentum = {0.001, 0.02, 0.001};
   }
-  World world(models, states, WorldOptions{});
+  World world(models, states, WorldDef{});
   ParticleWrench push;
   push.body = world.id(bodies);
   push.force = {0.1, -0.2, 0.05};

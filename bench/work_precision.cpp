@@ -79,8 +79,9 @@ bool RunsInWorld(const Scene& scene) { return scene.forces.empty(); }
 
 World MakeSceneWorld(const Scene& scene, const std::string& integrator, double dt, int bodies) {
   std::vector<BodyModel> models;
-  for (int i = 0; i < bodies; ++i) models.emplace_back(scene.name + std::to_string(i), scene.particles);
-  WorldOptions options;
+  for (int i = 0; i < bodies; ++i)
+    models.emplace_back(scene.name + std::to_string(i), scene.particles);
+  WorldDef options;
   options.integrator = integrator;
   options.dt_s = dt;
   World world(std::move(models), std::vector<BodyState>(bodies, scene.initial), options);
@@ -141,8 +142,8 @@ double TimePerBodyStep(long max_steps, Reset reset, StepAll step_all) {
   step_all(1);
   const double one_step_ns =
       std::chrono::duration<double, std::nano>(Clock::now() - sizing_start).count();
-  const long steps =
-      std::clamp<long>(std::lround(kSampleTarget_ns / one_step_ns), 1, std::max<long>(1, max_steps - 1));
+  const long steps = std::clamp<long>(std::lround(kSampleTarget_ns / one_step_ns), 1,
+                                      std::max<long>(1, max_steps - 1));
   std::vector<double> samples;
   for (int r = 0; r < kTimingRepeats; ++r) {
     restart();
@@ -171,7 +172,8 @@ double TimePerOutput(Peer& peer, const Scene& scene) {
     peer.Setup(scene, 1, kOutputInterval_s);
     const auto start = Clock::now();
     for (long n = 0; n < outputs; ++n) peer.Step();
-    const double elapsed_ns = std::chrono::duration<double, std::nano>(Clock::now() - start).count();
+    const double elapsed_ns =
+        std::chrono::duration<double, std::nano>(Clock::now() - start).count();
     samples.push_back(elapsed_ns / double(outputs));
     spent_ns += elapsed_ns;
   }
@@ -232,7 +234,8 @@ std::vector<BodyState> FineRun(const Scene& scene, const BodyModel& model, doubl
   return captured;
 }
 
-Reference MakeReference(const Scene& scene, const BodyModel& model, const std::vector<double>& dts) {
+Reference MakeReference(const Scene& scene, const BodyModel& model,
+                        const std::vector<double>& dts) {
   Reference reference;
   std::vector<double> t_ends;
   for (double dt : dts) t_ends.push_back(StepCount(scene, dt) * dt);
@@ -240,9 +243,9 @@ Reference MakeReference(const Scene& scene, const BodyModel& model, const std::v
     reference.at_end = FineRun(scene, model, kFineDt, t_ends);
     const std::vector<BodyState> coarse = FineRun(scene, model, 2 * kFineDt, t_ends);
     for (std::size_t i = 0; i < t_ends.size(); ++i) {
-      reference.own_error_rad = std::max(
-          reference.own_error_rad,
-          AngleBetween(coarse[i].orientation, reference.at_end[i].orientation) / 15.0);
+      reference.own_error_rad =
+          std::max(reference.own_error_rad,
+                   AngleBetween(coarse[i].orientation, reference.at_end[i].orientation) / 15.0);
     }
     return reference;
   }
@@ -269,9 +272,12 @@ Reference MakeReference(const Scene& scene, const BodyModel& model, const std::v
 
 const char* SteppingName(Peer::Stepping stepping) {
   switch (stepping) {
-    case Peer::Stepping::kFixedStep: return "fixed";
-    case Peer::Stepping::kAdaptive: return "adaptive";
-    case Peer::Stepping::kClosedForm: return "closed_form";
+    case Peer::Stepping::kFixedStep:
+      return "fixed";
+    case Peer::Stepping::kAdaptive:
+      return "adaptive";
+    case Peer::Stepping::kClosedForm:
+      return "closed_form";
   }
   return "";
 }
@@ -311,7 +317,8 @@ std::vector<std::string> SplitList(const std::string& list) {
 }
 
 bool Selected(const std::vector<std::string>& selection, const std::string& name) {
-  return selection.empty() || std::find(selection.begin(), selection.end(), name) != selection.end();
+  return selection.empty() ||
+         std::find(selection.begin(), selection.end(), name) != selection.end();
 }
 
 }  // namespace
@@ -326,19 +333,26 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     const bool has_value = i + 1 < argc;
-    if (arg == "--quick") quick = true;
-    else if (arg == "--ours") ours_only = true;
-    else if (arg == "--scenes" && has_value) scene_names = SplitList(argv[++i]);
-    else if (arg == "--methods" && has_value) method_names = SplitList(argv[++i]);
-    else if (arg == "--peers" && has_value) peer_names = SplitList(argv[++i]);
-    else if (arg == "--dts" && has_value) dt_texts = SplitList(argv[++i]);
-    else output = arg;
+    if (arg == "--quick")
+      quick = true;
+    else if (arg == "--ours")
+      ours_only = true;
+    else if (arg == "--scenes" && has_value)
+      scene_names = SplitList(argv[++i]);
+    else if (arg == "--methods" && has_value)
+      method_names = SplitList(argv[++i]);
+    else if (arg == "--peers" && has_value)
+      peer_names = SplitList(argv[++i]);
+    else if (arg == "--dts" && has_value)
+      dt_texts = SplitList(argv[++i]);
+    else
+      output = arg;
   }
   // Half decades from 0.3 s down to 30 µs: the large steps are where the
   // high-order schemes reach 1e-6 rad at the least CPU per simulated second.
-  std::vector<double> dts = quick ? std::vector<double>{1e-2, 1e-3}
-                                  : std::vector<double>{3e-1, 1e-1, 3e-2, 1e-2, 3e-3,
-                                                        1e-3, 3e-4, 1e-4, 3e-5};
+  std::vector<double> dts =
+      quick ? std::vector<double>{1e-2, 1e-3}
+            : std::vector<double>{3e-1, 1e-1, 3e-2, 1e-2, 3e-3, 1e-3, 3e-4, 1e-4, 3e-5};
   if (!dt_texts.empty()) {
     dts.clear();
     for (const std::string& text : dt_texts) dts.push_back(std::stod(text));
@@ -347,7 +361,9 @@ int main(int argc, char** argv) {
   std::vector<std::unique_ptr<Peer>> peers;
   if (!ours_only) peers = MakePeers(&missing);
   peers.erase(std::remove_if(peers.begin(), peers.end(),
-                             [&](const std::unique_ptr<Peer>& peer) { return !Selected(peer_names, peer->name()); }),
+                             [&](const std::unique_ptr<Peer>& peer) {
+                               return !Selected(peer_names, peer->name());
+                             }),
               peers.end());
   for (const std::string& name : missing) std::cerr << "work_precision: skipping " << name << "\n";
 
@@ -358,7 +374,8 @@ int main(int argc, char** argv) {
   }
   // stepping: fixed (a step of dt_s), adaptive (outputs dt_s apart at the
   // solver's tolerance) or closed_form (the exact motion at outputs dt_s apart).
-  csv << "scene,engine,method,stepping,tolerance,dt_s,orientation_error_rad,position_error_m,energy_rel_error,"
+  csv << "scene,engine,method,stepping,tolerance,dt_s,orientation_error_rad,position_error_m,"
+         "energy_rel_error,"
          "momentum_rel_error,ns_per_body_step,flips,first_flip_error_s\n";
   for (const Scene& scene : WorkPrecisionScenes()) {
     if (!Selected(scene_names, scene.name)) continue;
@@ -373,7 +390,8 @@ int main(int argc, char** argv) {
       for (const std::string& name : IntegratorNames()) {
         if (!Selected(method_names, name)) continue;
         FlipCounter flips;
-        const BodyState final_state = RunOurs(scene, model, name, dt, track_flips ? &flips : nullptr);
+        const BodyState final_state =
+            RunOurs(scene, model, name, dt, track_flips ? &flips : nullptr);
         const double ns = TimeOurs(scene, model, name, dt, timed_steps);
         WriteRow(csv, scene, "rigid_body_sim", name, Peer::Stepping::kFixedStep, std::nullopt, dt,
                  Compare(model, final_state, expected), ns, flips.times, reference);
@@ -403,8 +421,8 @@ int main(int argc, char** argv) {
                                     timed_steps, [&] { peer->Setup(scene, kTimedBodies, dt); },
                                     [&](long) { peer->Step(); });
         } catch (const std::exception& failure) {
-          std::cerr << scene.name << ": " << peer->name() << " at dt " << dt << " failed: "
-                    << failure.what() << "\n";
+          std::cerr << scene.name << ": " << peer->name() << " at dt " << dt
+                    << " failed: " << failure.what() << "\n";
         }
         const std::string full = peer->name();
         const std::string engine = full.substr(0, full.find('_'));

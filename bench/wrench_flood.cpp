@@ -16,9 +16,9 @@
 #include <thread>
 #include <vector>
 
-#include <ros/ros.h>
 #include <rigid_body_sim/ParticleWrench.h>
 #include <rigid_body_sim/ParticleWrenchArray.h>
+#include <ros/ros.h>
 
 namespace {
 
@@ -37,8 +37,9 @@ struct Target {
 int main(int argc, char** argv) {
   ros::init(argc, argv, "wrench_flood", ros::init_options::AnonymousName);
   if (argc != 9) {
-    std::fprintf(stderr, "usage: wrench_flood ARRAY_BODY ARRAY_PARTICLES ARRAYS_PER_S ENTRIES "
-                         "SINGLE_BODY SINGLE_PARTICLES SINGLES_PER_S DURATION_S\n");
+    std::fprintf(stderr,
+                 "usage: wrench_flood ARRAY_BODY ARRAY_PARTICLES ARRAYS_PER_S ENTRIES "
+                 "SINGLE_BODY SINGLE_PARTICLES SINGLES_PER_S DURATION_S\n");
     return 2;
   }
   const double arrays_per_s = std::atof(argv[3]);
@@ -47,8 +48,8 @@ int main(int argc, char** argv) {
   const double duration_s = std::atof(argv[8]);
 
   ros::NodeHandle nh;
-  ros::Publisher arrays = nh.advertise<rigid_body_sim::ParticleWrenchArray>(
-      "/rigid_body_sim/particle_wrenches", 1000);
+  ros::Publisher arrays =
+      nh.advertise<rigid_body_sim::ParticleWrenchArray>("/rigid_body_sim/particle_wrenches", 1000);
   ros::Publisher singles =
       nh.advertise<rigid_body_sim::ParticleWrench>("/rigid_body_sim/particle_wrench", 100000);
   const auto connect_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
@@ -90,7 +91,8 @@ int main(int argc, char** argv) {
     }
     std::this_thread::sleep_until(tick + std::chrono::milliseconds(1));
   }
-  const double wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double wall_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   std::this_thread::sleep_for(std::chrono::milliseconds(500));  // let the queues drain
   std::printf("sent %llu wrenches in %.3f s: %.0f per s (%.0f arrays, %.0f singles)\n",
               static_cast<unsigned long long>(sent_wrenches), wall_s, sent_wrenches / wall_s,

@@ -39,45 +39,79 @@ namespace {
 
 using XmlRpc::XmlRpcValue;
 
-
 const char* const kKeys[] = {
-    "name",   "particles", "mass",   "position",   "orientation", "linear_velocity",
-    "angular_velocity", "shape", "size", "radius", "length", "resolution",
-    "gravity_scale", "linear_damping", "angular_damping",
+    "name",
+    "particles",
+    "mass",
+    "position",
+    "orientation",
+    "linear_velocity",
+    "angular_velocity",
+    "shape",
+    "size",
+    "radius",
+    "length",
+    "resolution",
+    "gravity_scale",
+    "linear_damping",
+    "angular_damping",
 };
-const char* const kStrings[] = {"box", "sphere", "cylinder", "rod", "a", "b_1", "", "1x",
-                                "has space", "cube", "Body", "x"};
+const char* const kStrings[] = {"box", "sphere", "cylinder",  "rod",  "a",    "b_1",
+                                "",    "1x",     "has space", "cube", "Body", "x"};
 
 double Number(ByteReader* in) {
   switch (in->Byte() % 16) {
-    case 0: return 0.0;
-    case 1: return 1.0;
-    case 2: return -1.0;
-    case 3: return 0.5;
-    case 4: return 1e-300;
-    case 5: return 1e300;
-    case 6: return -1e300;
-    case 7: return std::numeric_limits<double>::quiet_NaN();
-    case 8: return std::numeric_limits<double>::infinity();
-    case 9: return -std::numeric_limits<double>::infinity();
-    case 10: return std::numeric_limits<double>::denorm_min();
-    case 11: return std::numeric_limits<double>::max();
-    case 12: return std::numeric_limits<double>::epsilon();
-    case 13: return static_cast<double>(static_cast<std::int8_t>(in->Byte())) / 8.0;
-    default: return in->RawDouble();
+    case 0:
+      return 0.0;
+    case 1:
+      return 1.0;
+    case 2:
+      return -1.0;
+    case 3:
+      return 0.5;
+    case 4:
+      return 1e-300;
+    case 5:
+      return 1e300;
+    case 6:
+      return -1e300;
+    case 7:
+      return std::numeric_limits<double>::quiet_NaN();
+    case 8:
+      return std::numeric_limits<double>::infinity();
+    case 9:
+      return -std::numeric_limits<double>::infinity();
+    case 10:
+      return std::numeric_limits<double>::denorm_min();
+    case 11:
+      return std::numeric_limits<double>::max();
+    case 12:
+      return std::numeric_limits<double>::epsilon();
+    case 13:
+      return static_cast<double>(static_cast<std::int8_t>(in->Byte())) / 8.0;
+    default:
+      return in->RawDouble();
   }
 }
 
 int Int(ByteReader* in) {
   switch (in->Byte() % 8) {
-    case 0: return 0;
-    case 1: return 1;
-    case 2: return -1;
-    case 3: return 40;
-    case 4: return 41;
-    case 5: return std::numeric_limits<int>::max();
-    case 6: return std::numeric_limits<int>::min();
-    default: return static_cast<int>(in->U32());
+    case 0:
+      return 0;
+    case 1:
+      return 1;
+    case 2:
+      return -1;
+    case 3:
+      return 40;
+    case 4:
+      return 41;
+    case 5:
+      return std::numeric_limits<int>::max();
+    case 6:
+      return std::numeric_limits<int>::min();
+    default:
+      return static_cast<int>(in->U32());
   }
 }
 
@@ -115,8 +149,10 @@ XmlRpcValue NumberList(ByteReader* in) {
   const int len = static_cast<int>(in->Byte() % 6);
   list.setSize(len);
   for (int i = 0; i < len; ++i) {
-    if (in->Byte() % 4 == 0) list[i] = Int(in);
-    else list[i] = Number(in);
+    if (in->Byte() % 4 == 0)
+      list[i] = Int(in);
+    else
+      list[i] = Number(in);
   }
   return list;
 }
@@ -125,15 +161,26 @@ XmlRpcValue Value(ByteReader* in, int depth) {
   if (in->empty()) return XmlRpcValue(1.0);
   const std::uint8_t kind = in->Byte() % (depth >= 6 ? 6 : 10);
   switch (kind) {
-    case 0: return XmlRpcValue(Number(in));
-    case 1: return XmlRpcValue(Int(in));
-    case 2: return XmlRpcValue(static_cast<bool>(in->Byte() & 1));
-    case 3: return XmlRpcValue(std::string(kStrings[in->Byte() % (sizeof(kStrings) / sizeof(kStrings[0]))]));
-    case 4: return XmlRpcValue(in->String(140));
-    case 5: return NumberList(in);
-    case 6: case 7: return Struct(in, depth);
-    case 8: return Array(in, depth, 8);
-    default: return XmlRpcValue();  // TypeInvalid
+    case 0:
+      return XmlRpcValue(Number(in));
+    case 1:
+      return XmlRpcValue(Int(in));
+    case 2:
+      return XmlRpcValue(static_cast<bool>(in->Byte() & 1));
+    case 3:
+      return XmlRpcValue(
+          std::string(kStrings[in->Byte() % (sizeof(kStrings) / sizeof(kStrings[0]))]));
+    case 4:
+      return XmlRpcValue(in->String(140));
+    case 5:
+      return NumberList(in);
+    case 6:
+    case 7:
+      return Struct(in, depth);
+    case 8:
+      return Array(in, depth, 8);
+    default:
+      return XmlRpcValue();  // TypeInvalid
   }
 }
 
@@ -163,7 +210,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // The top level is mostly a list of structs, so most inputs reach ParseBody.
   XmlRpcValue bodies;
   switch (in.Byte() % 8) {
-    case 0: bodies = Value(&in, 0); break;
+    case 0:
+      bodies = Value(&in, 0);
+      break;
     default: {
       const int len = 1 + in.Byte() % 4;
       bodies.setSize(len);
@@ -193,7 +242,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // The node's scene path ends in the World, which checks names and states.
   std::optional<rigid_body_sim::core::World> world;
   try {
-    world.emplace(models, states, rigid_body_sim::core::WorldOptions{}, scene_bodies.properties);
+    world.emplace(models, states, rigid_body_sim::core::WorldDef{}, scene_bodies.properties);
   } catch (const std::invalid_argument& error) {
     if (Verbose()) std::fprintf(stderr, "World: %s\n", error.what());
     return 0;

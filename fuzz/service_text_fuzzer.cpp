@@ -65,10 +65,10 @@ bool NoParameters(const std::string&, XmlRpc::XmlRpcValue*) { return false; }
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   std::vector<core::BodyModel> models;
   models.emplace_back("box", core::MakeBox(1.0, Eigen::Vector3d(0.2, 0.2, 0.2), 2));
-  std::vector<core::BodyState> states{core::StateFromTwist(
-      models[0], Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(), Eigen::Vector3d::Zero(),
-      Eigen::Vector3d::Zero())};
-  world = std::make_unique<core::World>(std::move(models), std::move(states), core::WorldOptions{});
+  std::vector<core::BodyState> states{
+      core::StateFromTwist(models[0], Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(),
+                           Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())};
+  world = std::make_unique<core::World>(std::move(models), std::move(states), core::WorldDef{});
   return 0;
 }
 
@@ -83,7 +83,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     return 0;
   }
   // XmlRpc::XmlRpcException or anything else escapes: libFuzzer reports it.
-  if (entry.models.size() != 1 || entry.initial_states.size() != 1 || entry.properties.size() != 1) {
+  if (entry.models.size() != 1 || entry.initial_states.size() != 1 ||
+      entry.properties.size() != 1) {
     Fail("one model, state and set of properties");
   }
   const core::BodyModel& model = entry.models[0];
@@ -92,7 +93,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!model.inertia().allFinite() || !model.inverse_inertia().allFinite()) Fail("finite inertia");
   if (!Finite(state)) Fail("finite initial state");
   if (std::abs(state.orientation.norm() - 1.0) > 1e-9) Fail("unit orientation");
-  if (Verbose()) std::fprintf(stderr, "parsed '%s', %zu particles\n", model.name().c_str(), model.particle_count());
+  if (Verbose())
+    std::fprintf(stderr, "parsed '%s', %zu particles\n", model.name().c_str(),
+                 model.particle_count());
 
   const std::size_t before = world->size();
   try {
@@ -102,7 +105,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (world->size() != before) Fail("a refused body left in the world");
     return 0;
   }
-  if (world->size() != before + 1 || !Finite(world->state(before))) Fail("finite state in the world");
+  if (world->size() != before + 1 || !Finite(world->state(before)))
+    Fail("finite state in the world");
   world->RemoveBody(world->id(before));
   if (world->size() != before) Fail("the world back to its bodies");
   return 0;

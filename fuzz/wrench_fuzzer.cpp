@@ -46,30 +46,48 @@ namespace {
 
 namespace core = rigid_body_sim::core;
 
-
 // A double for a force, torque or twist component: the awkward values often,
 // any bit pattern sometimes.
 double Number(ByteReader* in) {
   switch (in->Byte() % 20) {
-    case 0: return 0.0;
-    case 1: return -0.0;
-    case 2: return 1.0;
-    case 3: return -1.0;
-    case 4: return 1e3;
-    case 5: return 1e6;
-    case 6: return 1e12;
-    case 7: return 1e300;
-    case 8: return -1e300;
-    case 9: return std::numeric_limits<double>::max();
-    case 10: return std::numeric_limits<double>::lowest();
-    case 11: return std::numeric_limits<double>::denorm_min();
-    case 12: return std::numeric_limits<double>::min();
-    case 13: return std::numeric_limits<double>::quiet_NaN();
-    case 14: return std::numeric_limits<double>::infinity();
-    case 15: return -std::numeric_limits<double>::infinity();
-    case 16: return 3e8;
-    case 17: return static_cast<double>(static_cast<std::int8_t>(in->Byte()));
-    default: return in->RawDouble();
+    case 0:
+      return 0.0;
+    case 1:
+      return -0.0;
+    case 2:
+      return 1.0;
+    case 3:
+      return -1.0;
+    case 4:
+      return 1e3;
+    case 5:
+      return 1e6;
+    case 6:
+      return 1e12;
+    case 7:
+      return 1e300;
+    case 8:
+      return -1e300;
+    case 9:
+      return std::numeric_limits<double>::max();
+    case 10:
+      return std::numeric_limits<double>::lowest();
+    case 11:
+      return std::numeric_limits<double>::denorm_min();
+    case 12:
+      return std::numeric_limits<double>::min();
+    case 13:
+      return std::numeric_limits<double>::quiet_NaN();
+    case 14:
+      return std::numeric_limits<double>::infinity();
+    case 15:
+      return -std::numeric_limits<double>::infinity();
+    case 16:
+      return 3e8;
+    case 17:
+      return static_cast<double>(static_cast<std::int8_t>(in->Byte()));
+    default:
+      return in->RawDouble();
   }
 }
 
@@ -98,17 +116,16 @@ bool Finite(const geometry_msgs::Quaternion& q) {
 [[noreturn]] void Fail(const char* what, const core::World& world, std::size_t body,
                        const char* after) {
   const core::BodyState& s = world.state(body);
-  std::fprintf(stderr,
-               "wrench_fuzzer: invariant broken after %s: %s, body %zu '%s' (fault %s, step %llu,"
-               " integrator %s)\n  x = [%g %g %g] q = [%g %g %g %g] p = [%g %g %g] L = [%g %g %g]\n",
-               after, what, body, world.model(body).name().c_str(),
-               core::ToString(world.fault(body)),
-               static_cast<unsigned long long>(world.step_count()),
-               world.options().integrator.c_str(), s.position.x(), s.position.y(),
-               s.position.z(), s.orientation.x(), s.orientation.y(), s.orientation.z(),
-               s.orientation.w(), s.linear_momentum.x(), s.linear_momentum.y(),
-               s.linear_momentum.z(), s.angular_momentum.x(), s.angular_momentum.y(),
-               s.angular_momentum.z());
+  std::fprintf(
+      stderr,
+      "wrench_fuzzer: invariant broken after %s: %s, body %zu '%s' (fault %s, step %llu,"
+      " integrator %s)\n  x = [%g %g %g] q = [%g %g %g %g] p = [%g %g %g] L = [%g %g %g]\n",
+      after, what, body, world.model(body).name().c_str(), core::ToString(world.fault(body)),
+      static_cast<unsigned long long>(world.step_count()), world.options().integrator.c_str(),
+      s.position.x(), s.position.y(), s.position.z(), s.orientation.x(), s.orientation.y(),
+      s.orientation.z(), s.orientation.w(), s.linear_momentum.x(), s.linear_momentum.y(),
+      s.linear_momentum.z(), s.angular_momentum.x(), s.angular_momentum.y(),
+      s.angular_momentum.z());
   std::abort();
 }
 
@@ -123,13 +140,17 @@ void CheckWorld(const core::World& world, const char* after) {
     const core::BodyModel& model = world.model(i);
     const core::BodyState& state = world.state(i);
     if (!Finite(state)) Fail("state not finite", world, i, after);
-    if (std::abs(state.orientation.norm() - 1.0) > 1e-6) Fail("orientation not unit", world, i, after);
+    if (std::abs(state.orientation.norm() - 1.0) > 1e-6)
+      Fail("orientation not unit", world, i, after);
     const geometry_msgs::Pose pose = rigid_body_sim::ToPoseMsg(state);
-    if (!Finite(pose.position) || !Finite(pose.orientation)) Fail("ToPoseMsg not finite", world, i, after);
+    if (!Finite(pose.position) || !Finite(pose.orientation))
+      Fail("ToPoseMsg not finite", world, i, after);
     const geometry_msgs::Transform tf = rigid_body_sim::ToTransformMsg(state);
-    if (!Finite(tf.translation) || !Finite(tf.rotation)) Fail("ToTransformMsg not finite", world, i, after);
+    if (!Finite(tf.translation) || !Finite(tf.rotation))
+      Fail("ToTransformMsg not finite", world, i, after);
     const geometry_msgs::Twist twist = rigid_body_sim::ToTwistMsg(model, state);
-    if (!Finite(twist.linear) || !Finite(twist.angular)) Fail("ToTwistMsg not finite", world, i, after);
+    if (!Finite(twist.linear) || !Finite(twist.angular))
+      Fail("ToTwistMsg not finite", world, i, after);
     const rigid_body_sim::BodyState msg = rigid_body_sim::ToBodyState(model, state);
     if (!Finite(msg.linear_momentum) || !Finite(msg.angular_momentum) ||
         !std::isfinite(msg.kinetic_energy)) {
@@ -141,10 +162,12 @@ void CheckWorld(const core::World& world, const char* after) {
 std::vector<core::BodyModel> MakeModels() {
   std::vector<core::BodyModel> models;
   models.emplace_back("dot", std::vector<core::Particle>{{0.5, {1.0, 2.0, 3.0}}});
-  models.emplace_back("rod", std::vector<core::Particle>{{1.0, {-0.5, 0.0, 0.0}}, {1.0, {0.5, 0.0, 0.0}}});
+  models.emplace_back("rod",
+                      std::vector<core::Particle>{{1.0, {-0.5, 0.0, 0.0}}, {1.0, {0.5, 0.0, 0.0}}});
   models.emplace_back("cube", core::MakeBox(2.0, Eigen::Vector3d(0.2, 0.2, 0.2), 2));
-  models.emplace_back("plate", std::vector<core::Particle>{
-                                   {1.0, {0.0, 0.0, 0.0}}, {2.0, {0.3, 0.0, 0.0}}, {0.5, {0.0, 0.1, 0.0}}});
+  models.emplace_back("plate",
+                      std::vector<core::Particle>{
+                          {1.0, {0.0, 0.0, 0.0}}, {2.0, {0.3, 0.0, 0.0}}, {0.5, {0.0, 0.1, 0.0}}});
   models.emplace_back("top", core::MakeCylinder(1.0, 0.1, 0.02, 2));
   return models;
 }
@@ -163,36 +186,55 @@ std::string BodyName(ByteReader* in, const Setup& setup) {
   static const char* const kNames[] = {"dot", "rod", "cube", "plate", "top"};
   const std::uint8_t b = in->Byte();
   switch (b % 8) {
-    case 5: return "/" + std::string(kNames[in->Byte() % 5]);
-    case 6: return setup.tf_prefix + kNames[in->Byte() % 5];
-    case 7: return in->String(16);
-    default: return kNames[b % 5];
+    case 5:
+      return "/" + std::string(kNames[in->Byte() % 5]);
+    case 6:
+      return setup.tf_prefix + kNames[in->Byte() % 5];
+    case 7:
+      return in->String(16);
+    default:
+      return kNames[b % 5];
   }
 }
 
 std::string FrameId(ByteReader* in, const Setup& setup, const std::string& body) {
   switch (in->Byte() % 10) {
-    case 0: case 1: return "";
-    case 2: return setup.world_frame;
-    case 3: return "/" + setup.world_frame;
-    case 4: return body;
-    case 5: return "/" + body;
-    case 6: return setup.tf_prefix + body;
-    case 7: return "/" + setup.tf_prefix + body;
-    case 8: return "base_link";
-    default: return in->String(24);
+    case 0:
+    case 1:
+      return "";
+    case 2:
+      return setup.world_frame;
+    case 3:
+      return "/" + setup.world_frame;
+    case 4:
+      return body;
+    case 5:
+      return "/" + body;
+    case 6:
+      return setup.tf_prefix + body;
+    case 7:
+      return "/" + setup.tf_prefix + body;
+    case 8:
+      return "base_link";
+    default:
+      return in->String(24);
   }
 }
 
 ros::Time Stamp(ByteReader* in, const Setup& setup, const core::World& world) {
   switch (in->Byte() % 6) {
-    case 0: case 1: return ros::Time();  // zero: from the next step
-    case 2: {                             // a step time, as a client computes it
+    case 0:
+    case 1:
+      return ros::Time();  // zero: from the next step
+    case 2: {              // a step time, as a client computes it
       const double t = world.time() + static_cast<double>(in->Byte() % 16) * setup.dt;
       ros::Time stamp = setup.start_stamp;
       stamp.sec += static_cast<std::uint32_t>(t);
       stamp.nsec += static_cast<std::uint32_t>((t - std::floor(t)) * 1e9);
-      while (stamp.nsec >= 1000000000u) { stamp.nsec -= 1000000000u; ++stamp.sec; }
+      while (stamp.nsec >= 1000000000u) {
+        stamp.nsec -= 1000000000u;
+        ++stamp.sec;
+      }
       return stamp;
     }
     case 3: {  // just before or after the start
@@ -215,9 +257,9 @@ ros::Time Stamp(ByteReader* in, const Setup& setup, const core::World& world) {
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
   scene_models = MakeModels();
   for (const core::BodyModel& m : scene_models) {
-    scene_states.push_back(core::StateFromTwist(m, Eigen::Vector3d(0.0, 0.0, 1.0),
-                                                Eigen::Quaterniond::Identity(),
-                                                Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0.0, 0.0, 0.5)));
+    scene_states.push_back(
+        core::StateFromTwist(m, Eigen::Vector3d(0.0, 0.0, 1.0), Eigen::Quaterniond::Identity(),
+                             Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0.0, 0.0, 0.5)));
   }
   return 0;
 }
@@ -226,7 +268,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   ByteReader in(data, size);
   Setup setup;
 
-  core::WorldOptions options;
+  core::WorldDef options;
   const std::vector<std::string>& integrators = core::IntegratorNames();
   options.integrator = integrators[in.Byte() % integrators.size()];
   static const double kDts[] = {1e-3, 1e-2, 0.1, 1e-5};
@@ -250,7 +292,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   core::World world(scene_models, scene_states, options);
   if (Verbose()) {
-    std::fprintf(stderr, "integrator %s dt %g gravity [%g %g %g] timeout %g tf_prefix '%s' start %u.%09u\n",
+    std::fprintf(stderr,
+                 "integrator %s dt %g gravity [%g %g %g] timeout %g tf_prefix '%s' start %u.%09u\n",
                  options.integrator.c_str(), options.dt_s, options.gravity.x(), options.gravity.y(),
                  options.gravity.z(), options.wrench_timeout_s, setup.tf_prefix.c_str(),
                  setup.start_stamp.sec, setup.start_stamp.nsec);
@@ -268,8 +311,12 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       rigid_body_sim::ParticleWrench msg;
       msg.body = BodyName(&in, setup);
       switch (in.Byte() % 4) {
-        case 0: msg.particle = in.U32(); break;
-        default: msg.particle = in.Byte() % 10; break;
+        case 0:
+          msg.particle = in.U32();
+          break;
+        default:
+          msg.particle = in.Byte() % 10;
+          break;
       }
       msg.header.frame_id = FrameId(&in, setup, msg.body);
       msg.header.stamp = Stamp(&in, setup, world);
@@ -280,8 +327,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       msg.wrench.torque.y = Number(&in);
       msg.wrench.torque.z = Number(&in);
       if (Verbose()) {
-        std::fprintf(stderr, "wrench body '%s' particle %u frame '%s' stamp %u.%09u force [%g %g %g] "
-                     "torque [%g %g %g]\n", msg.body.c_str(), msg.particle, msg.header.frame_id.c_str(),
+        std::fprintf(stderr,
+                     "wrench body '%s' particle %u frame '%s' stamp %u.%09u force [%g %g %g] "
+                     "torque [%g %g %g]\n",
+                     msg.body.c_str(), msg.particle, msg.header.frame_id.c_str(),
                      msg.header.stamp.sec, msg.header.stamp.nsec, msg.wrench.force.x,
                      msg.wrench.force.y, msg.wrench.force.z, msg.wrench.torque.x,
                      msg.wrench.torque.y, msg.wrench.torque.z);
@@ -289,14 +338,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const rigid_body_sim::CheckedWrench converted =
           rigid_body_sim::CheckParticleWrench(msg, frames, setup.start_stamp, world.time());
       if (Verbose()) {
-        std::fprintf(stderr, "  -> %s %s start %.9g\n", rigid_body_sim::ToString(converted.rejection),
-                     converted.detail.c_str(), converted.wrench.start_s);
+        std::fprintf(stderr, "  -> %s %s start %.9g\n",
+                     rigid_body_sim::ToString(converted.rejection), converted.detail.c_str(),
+                     converted.wrench.start_s);
       }
       if (converted.accepted()) {
         const core::ParticleWrench& w = converted.wrench;
         if (!world.IndexOf(w.body) || w.particle >= world.model(w.body).particle_count() ||
             !w.force.allFinite() || !w.couple.allFinite() || !std::isfinite(w.start_s)) {
-          std::fprintf(stderr, "wrench_fuzzer: accepted an invalid wrench (body %u.%u particle %zu)\n",
+          std::fprintf(stderr,
+                       "wrench_fuzzer: accepted an invalid wrench (body %u.%u particle %zu)\n",
                        w.body.slot, w.body.generation, w.particle);
           std::abort();
         }
@@ -337,9 +388,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const std::optional<core::BodyState> state =
           rigid_body_sim::StateFromRequest(world.model(body), pose, twist, &reason);
       if (Verbose()) {
-        std::fprintf(stderr, "set_body_state %zu x [%g %g %g] q [%g %g %g %g] v [%g %g %g] w [%g %g %g] %s\n",
-                     body, v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11],
-                     v[12], state ? "(set)" : reason.c_str());
+        std::fprintf(
+            stderr,
+            "set_body_state %zu x [%g %g %g] q [%g %g %g %g] v [%g %g %g] w [%g %g %g] %s\n", body,
+            v[0], v[1], v[2], v[3], v[4], v[5], v[6], v[7], v[8], v[9], v[10], v[11], v[12],
+            state ? "(set)" : reason.c_str());
       }
       // The node refuses it, and says why.
       if (!state || world.SubstepsFor(body, *state) == 0) continue;

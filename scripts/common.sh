@@ -42,8 +42,8 @@ rbs_source_devel() {
   set -u
 }
 
-# Prints the C++ files of src/ and include/ (relative to the checkout, one a
-# line) that differ from REV ($1; default: the merge-base of HEAD and
+# Prints the C++ files of src/, include/, test/, bench/ and fuzz/ (relative
+# to the checkout, one a line) that differ from REV ($1; default: the merge-base of HEAD and
 # origin/main, else main), committed or not, and the new untracked ones;
 # prints nothing when there is no such base. format_check.sh --changed and
 # tidy_check.sh use it.
@@ -59,8 +59,8 @@ rbs_changed_cxx() {
   fi
   [ -n "$base" ] || return 0
   {
-    git -C "$repo" diff --name-only --diff-filter=ACMR "$base" -- src include
-    git -C "$repo" ls-files --others --exclude-standard -- src include
+    git -C "$repo" diff --name-only --diff-filter=ACMR "$base" -- src include test bench fuzz
+    git -C "$repo" ls-files --others --exclude-standard -- src include test bench fuzz
   } | sort -u | while IFS= read -r f; do
     case "$f" in *.cpp | *.h) [ -f "$repo/$f" ] && echo "$f" ;; esac
   done

@@ -1,9 +1,10 @@
 #!/bin/bash
-# Holds the C++ of src/ and include/ to .clang-format: lists every file that
-# clang-format would change and exits non-zero if there is one. Run by the
-# test command; `clang-format -i <file>` fixes a file.
+# Holds every C++ file of the tree (src/, include/, test/, bench/, fuzz/) to
+# .clang-format: lists every file that clang-format would change and exits
+# non-zero if there is one. Run by the test command; `clang-format -i <file>`
+# fixes a file.
 #
-#   bash scripts/format_check.sh             # every file of src/ and include/
+#   bash scripts/format_check.sh             # every C++ file of the tree
 #   bash scripts/format_check.sh --changed   # those changed since main
 #   bash scripts/format_check.sh FILE...     # these files
 #
@@ -23,7 +24,7 @@ if [ "${1:-}" = "--changed" ]; then
 elif [ $# -gt 0 ]; then
   files=("$@")
 else
-  mapfile -t files < <(find src include -name '*.cpp' -o -name '*.h' | sort)
+  mapfile -t files < <(find src include test bench fuzz \( -name '*.cpp' -o -name '*.h' \) | sort)
 fi
 unformatted=()
 for file in "${files[@]}"; do

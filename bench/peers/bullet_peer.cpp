@@ -62,7 +62,8 @@ Eigen::Vector3d FromBullet(const btVector3& v) { return Eigen::Vector3d(v.x(), v
 
 class BulletPeer final : public Peer {
  public:
-  BulletPeer(std::string name, int gyroscopic_flags) : name_(std::move(name)), flags_(gyroscopic_flags) {}
+  BulletPeer(std::string name, int gyroscopic_flags)
+      : name_(std::move(name)), flags_(gyroscopic_flags) {}
   ~BulletPeer() override { Release(); }
 
   std::string name() const override { return name_; }
@@ -75,8 +76,8 @@ class BulletPeer final : public Peer {
     dispatcher_ = std::make_unique<btCollisionDispatcher>(collision_configuration_.get());
     broadphase_ = std::make_unique<btDbvtBroadphase>();
     solver_ = std::make_unique<btSequentialImpulseConstraintSolver>();
-    world_ = std::make_unique<btDiscreteDynamicsWorld>(dispatcher_.get(), broadphase_.get(),
-                                                       solver_.get(), collision_configuration_.get());
+    world_ = std::make_unique<btDiscreteDynamicsWorld>(
+        dispatcher_.get(), broadphase_.get(), solver_.get(), collision_configuration_.get());
     world_->setGravity(btVector3(0, 0, 0));
     shape_ = std::make_unique<btEmptyShape>();
 
@@ -110,9 +111,10 @@ class BulletPeer final : public Peer {
       run_.loads->BeginStep(run_.step * run_.dt_s);
       for (auto& body : bodies_) {
         const Eigen::Matrix3d rotation = BodyOrientation(*body).toRotationMatrix();
-        run_.loads->ForEachForce(rotation, [&](const Eigen::Vector3d& f, const Eigen::Vector3d& arm) {
-          body->applyForce(ToBullet(f), ToBullet(arm));
-        });
+        run_.loads->ForEachForce(rotation,
+                                 [&](const Eigen::Vector3d& f, const Eigen::Vector3d& arm) {
+                                   body->applyForce(ToBullet(f), ToBullet(arm));
+                                 });
         body->applyTorque(ToBullet(run_.loads->couple()));
       }
     }
@@ -122,8 +124,9 @@ class BulletPeer final : public Peer {
 
   PeerState State(int copy) const override {
     const btRigidBody& body = *bodies_[copy];
-    return StateFromTwist(*run_.model, FromBullet(body.getCenterOfMassPosition()), BodyOrientation(body),
-                          FromBullet(body.getLinearVelocity()), FromBullet(body.getAngularVelocity()));
+    return StateFromTwist(*run_.model, FromBullet(body.getCenterOfMassPosition()),
+                          BodyOrientation(body), FromBullet(body.getLinearVelocity()),
+                          FromBullet(body.getAngularVelocity()));
   }
 
  private:

@@ -37,8 +37,8 @@ namespace rigid_body_sim::bench {
 namespace {
 
 using dart::dynamics::BodyNode;
-using dart::dynamics::FreeJoint;
 using dart::dynamics::Frame;
+using dart::dynamics::FreeJoint;
 
 class DartPeer final : public Peer {
  public:
@@ -101,8 +101,8 @@ class DartPeer final : public Peer {
     const BodyNode* body = bodies_[copy];
     const Eigen::Isometry3d& pose = body->getWorldTransform();
     return StateFromTwist(*run_.model, pose.translation(),
-                          Eigen::Quaterniond(pose.linear()).normalized(),
-                          body->getLinearVelocity(), body->getAngularVelocity());
+                          Eigen::Quaterniond(pose.linear()).normalized(), body->getLinearVelocity(),
+                          body->getAngularVelocity());
   }
 
  private:

@@ -11,12 +11,12 @@
 
 namespace rigid_body_sim::bench {
 
-inline constexpr std::array<const char*, 3> kMujocoConfigurations = {
-    "mujoco_euler", "mujoco_rk4", "mujoco_implicit"};
+inline constexpr std::array<const char*, 3> kMujocoConfigurations = {"mujoco_euler", "mujoco_rk4",
+                                                                     "mujoco_implicit"};
 inline constexpr std::array<const char*, 3> kBulletConfigurations = {
     "bullet_implicit", "bullet_explicit", "bullet_no_gyro"};
-inline constexpr std::array<const char*, 3> kOdeConfigurations = {
-    "ode_gyro", "ode_no_gyro", "ode_finite_rotation"};
+inline constexpr std::array<const char*, 3> kOdeConfigurations = {"ode_gyro", "ode_no_gyro",
+                                                                  "ode_finite_rotation"};
 inline constexpr std::array<const char*, 1> kSimbodyConfigurations = {"simbody_merson_fixed"};
 inline constexpr std::array<const char*, 1> kDartConfigurations = {"dart_semi_implicit"};
 inline constexpr std::array<const char*, 1> kOdeintConfigurations = {"odeint_rkf78"};
@@ -28,11 +28,12 @@ inline constexpr std::array<const char*, 1> kClosedFormConfigurations = {"refere
 // a whole-scene run of the slowest peer, and on these scenes its steps are
 // the 1 ms of the output grid at every accuracy), odeint's tolerance over the
 // range where dopri5 is above round-off.
-inline constexpr std::array<const char*, 1> kSimbodyAdaptiveConfigurations = {"simbody_merson_adaptive"};
+inline constexpr std::array<const char*, 1> kSimbodyAdaptiveConfigurations = {
+    "simbody_merson_adaptive"};
 inline constexpr std::array<double, 3> kSimbodyAccuracies = {1e-4, 1e-8, 1e-12};
 inline constexpr std::array<const char*, 1> kOdeintAdaptiveConfigurations = {"odeint_dopri5"};
-inline constexpr std::array<double, 8> kOdeintTolerances = {1e-6, 1e-7, 1e-8, 1e-9,
-                                                           1e-10, 1e-11, 1e-12, 1e-13};
+inline constexpr std::array<double, 8> kOdeintTolerances = {1e-6,  1e-7,  1e-8,  1e-9,
+                                                            1e-10, 1e-11, 1e-12, 1e-13};
 
 // Each throws std::invalid_argument for a name not in its list above.
 // Defined only when the engine was found (RBS_HAVE_MUJOCO, ...).

@@ -51,7 +51,8 @@ std::vector<std::unique_ptr<Peer>> MakePeers(std::vector<std::string>* missing) 
 #endif
 #ifdef RBS_HAVE_SIMBODY
   AddAll(kSimbodyConfigurations, MakeSimbodyPeer, &peers);
-  AddAtEachTolerance(kSimbodyAdaptiveConfigurations, kSimbodyAccuracies, MakeSimbodyAdaptivePeer, &peers);
+  AddAtEachTolerance(kSimbodyAdaptiveConfigurations, kSimbodyAccuracies, MakeSimbodyAdaptivePeer,
+                     &peers);
 #else
   MarkMissing(kSimbodyConfigurations, missing);
   MarkMissing(kSimbodyAdaptiveConfigurations, missing);
@@ -63,7 +64,8 @@ std::vector<std::unique_ptr<Peer>> MakePeers(std::vector<std::string>* missing) 
 #endif
 #ifdef RBS_HAVE_ODEINT
   AddAll(kOdeintConfigurations, MakeOdeintPeer, &peers);
-  AddAtEachTolerance(kOdeintAdaptiveConfigurations, kOdeintTolerances, MakeOdeintAdaptivePeer, &peers);
+  AddAtEachTolerance(kOdeintAdaptiveConfigurations, kOdeintTolerances, MakeOdeintAdaptivePeer,
+                     &peers);
 #else
   MarkMissing(kOdeintConfigurations, missing);
   MarkMissing(kOdeintAdaptiveConfigurations, missing);

@@ -258,8 +258,10 @@ class MujocoPeer final : public Peer {
 }  // namespace
 
 std::unique_ptr<Peer> MakeMujocoPeer(const std::string& configuration) {
-  if (configuration == "mujoco_euler") return std::make_unique<MujocoPeer>(configuration, mjINT_EULER, 0);
-  if (configuration == "mujoco_rk4") return std::make_unique<MujocoPeer>(configuration, mjINT_RK4, 0);
+  if (configuration == "mujoco_euler")
+    return std::make_unique<MujocoPeer>(configuration, mjINT_EULER, 0);
+  if (configuration == "mujoco_rk4")
+    return std::make_unique<MujocoPeer>(configuration, mjINT_RK4, 0);
   if (configuration == "mujoco_implicit") {
     return std::make_unique<MujocoPeer>(configuration, mjINT_IMPLICIT, 1);
   }

@@ -110,10 +110,11 @@ class OdePeer final : public Peer {
       for (const dBodyID body : bodies_) {
         const Eigen::Matrix3d rotation = Orientation(body).toRotationMatrix();
         const Eigen::Vector3d com = FromOde(dBodyGetPosition(body));
-        run_.loads->ForEachForce(rotation, [&](const Eigen::Vector3d& f, const Eigen::Vector3d& arm) {
-          const Eigen::Vector3d at = com + arm;
-          dBodyAddForceAtPos(body, f.x(), f.y(), f.z(), at.x(), at.y(), at.z());
-        });
+        run_.loads->ForEachForce(
+            rotation, [&](const Eigen::Vector3d& f, const Eigen::Vector3d& arm) {
+              const Eigen::Vector3d at = com + arm;
+              dBodyAddForceAtPos(body, f.x(), f.y(), f.z(), at.x(), at.y(), at.z());
+            });
         dBodyAddTorque(body, couple.x(), couple.y(), couple.z());
       }
     }

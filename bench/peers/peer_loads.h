@@ -41,7 +41,8 @@ class PeerLoads {
   }
 
   // The total force and the torque about the COM, couple included [N], [N m].
-  void Wrench(const Eigen::Matrix3d& rotation, Eigen::Vector3d* force, Eigen::Vector3d* torque) const;
+  void Wrench(const Eigen::Matrix3d& rotation, Eigen::Vector3d* force,
+              Eigen::Vector3d* torque) const;
 
   const Eigen::Vector3d& couple() const { return scene_->constant_couple; }
 

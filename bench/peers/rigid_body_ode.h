@@ -19,7 +19,8 @@ namespace rigid_body_sim::bench {
 using OdeState = std::array<double, 13>;
 
 // The layout of OdeState: position, quaternion (w, x, y, z), p, L.
-inline constexpr int kOdePosition = 0, kOdeQuaternion = 3, kOdeMomentum = 7, kOdeAngularMomentum = 10;
+inline constexpr int kOdePosition = 0, kOdeQuaternion = 3, kOdeMomentum = 7,
+                     kOdeAngularMomentum = 10;
 
 inline OdeState ToOdeState(const core::BodyState& state) {
   OdeState y;
@@ -46,7 +47,8 @@ inline core::BodyState FromOdeState(const OdeState& y) {
   core::BodyState state;
   state.position = Eigen::Vector3d(y[kOdePosition], y[kOdePosition + 1], y[kOdePosition + 2]);
   state.orientation = OdeOrientation(y);
-  state.linear_momentum = Eigen::Vector3d(y[kOdeMomentum], y[kOdeMomentum + 1], y[kOdeMomentum + 2]);
+  state.linear_momentum =
+      Eigen::Vector3d(y[kOdeMomentum], y[kOdeMomentum + 1], y[kOdeMomentum + 2]);
   state.angular_momentum = Eigen::Vector3d(y[kOdeAngularMomentum], y[kOdeAngularMomentum + 1],
                                            y[kOdeAngularMomentum + 2]);
   return state;

@@ -53,7 +53,9 @@ class SimbodyPeer final : public Peer {
   std::string name() const override {
     return tolerance_ ? "simbody_merson_adaptive" : "simbody_merson_fixed";
   }
-  Stepping stepping() const override { return tolerance_ ? Stepping::kAdaptive : Stepping::kFixedStep; }
+  Stepping stepping() const override {
+    return tolerance_ ? Stepping::kAdaptive : Stepping::kFixedStep;
+  }
   std::optional<double> tolerance() const override { return tolerance_; }
   bool Handles(const Scene& scene) const override { return !tolerance_ || scene.forces.empty(); }
   // At 1 ms its error is at round-off on the torque-free scenes and at the
@@ -66,7 +68,8 @@ class SimbodyPeer final : public Peer {
     system_ = std::make_unique<System>();
     const BodyModel& model = *run_.model;
     const Eigen::Matrix3d axes = model.principal_axes().toRotationMatrix();
-    const Eigen::Matrix3d inertia = axes * model.principal_moments().asDiagonal() * axes.transpose();
+    const Eigen::Matrix3d inertia =
+        axes * model.principal_moments().asDiagonal() * axes.transpose();
     SimTK::Mat33 inertia_matrix;
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) inertia_matrix(i, j) = inertia(i, j);
@@ -74,7 +77,8 @@ class SimbodyPeer final : public Peer {
     const SimTK::Body::Rigid body(
         SimTK::MassProperties(model.mass(), SimTK::Vec3(0), SimTK::Inertia(inertia_matrix)));
     for (int c = 0; c < copies; ++c) {
-      system_->bodies.emplace_back(system_->matter.Ground(), SimTK::Transform(), body, SimTK::Transform());
+      system_->bodies.emplace_back(system_->matter.Ground(), SimTK::Transform(), body,
+                                   SimTK::Transform());
     }
     SimTK::State state = system_->system.realizeTopology();
 
@@ -88,7 +92,8 @@ class SimbodyPeer final : public Peer {
       mobod.setQToFitTransform(state, pose);
       mobod.setUToFitVelocity(state, twist);
       // Zero unless the scene has a couple; the forced scene's wrench is set per step.
-      system_->loads.setOneBodyForce(state, mobod, SimTK::SpatialVec(ToSimTK(scene.constant_couple), SimTK::Vec3(0)));
+      system_->loads.setOneBodyForce(
+          state, mobod, SimTK::SpatialVec(ToSimTK(scene.constant_couple), SimTK::Vec3(0)));
     }
 
     simulation_ = std::make_unique<Simulation>(system_->system);
@@ -116,7 +121,8 @@ class SimbodyPeer final : public Peer {
         }
         Eigen::Vector3d force, torque;
         run_.loads->Wrench(r, &force, &torque);
-        system_->loads.setOneBodyForce(state, mobod, SimTK::SpatialVec(ToSimTK(torque), ToSimTK(force)));
+        system_->loads.setOneBodyForce(state, mobod,
+                                       SimTK::SpatialVec(ToSimTK(torque), ToSimTK(force)));
       }
       integrator.reinitialize(SimTK::Stage::Dynamics, false);
     }
@@ -147,7 +153,8 @@ class SimbodyPeer final : public Peer {
     std::vector<SimTK::MobilizedBody::Free> bodies;
   };
   struct Simulation {
-    explicit Simulation(const SimTK::MultibodySystem& system) : integrator(system), stepper(system, integrator) {}
+    explicit Simulation(const SimTK::MultibodySystem& system)
+        : integrator(system), stepper(system, integrator) {}
     SimTK::RungeKuttaMersonIntegrator integrator;
     SimTK::TimeStepper stepper;
   };

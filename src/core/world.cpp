@@ -36,7 +36,7 @@ constexpr std::size_t kBodiesPerBlock = 1024;
 }  // namespace
 
 World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
-             const WorldOptions& options, std::vector<BodyProperties> properties,
+             const WorldDef& options, std::vector<BodyProperties> properties,
              std::vector<BodyFrames> frames)
     : options_(options), integrator_(MakeIntegrator(options.integrator)) {
   CheckWorldDef(options_);

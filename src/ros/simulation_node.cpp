@@ -19,8 +19,8 @@ constexpr double kMaxCatchUp_s = 0.1;
 // How long a paused loop waits for callbacks before checking again.
 constexpr std::chrono::milliseconds kPausedWait(50);
 
-core::WorldOptions MakeWorldOptions(const NodeSettings& settings) {
-  core::WorldOptions options;
+core::WorldDef MakeWorldOptions(const NodeSettings& settings) {
+  core::WorldDef options;
   options.integrator = settings.integrator;
   options.dt_s = 1.0 / settings.rate_hz;
   options.gravity = settings.gravity_mps2;

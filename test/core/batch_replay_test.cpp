@@ -56,7 +56,7 @@ World MakeSlowWorld() {
     state.angular_momentum = {0.3, 1.0 + 1e-3 * i, -0.2};
     states.push_back(state);
   }
-  WorldOptions options;
+  WorldDef options;
   options.dt_s = 1e-3;
   options.gravity = {0.0, 0.0, -9.81};
   return World(models, states, options, properties);

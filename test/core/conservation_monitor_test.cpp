@@ -16,7 +16,7 @@ World ThreeTumblingBoxes() {
     models.emplace_back("box" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2));
     states[i].angular_momentum = {0.01, 0.02 * (i + 1), 0.0};
   }
-  return World(std::move(models), std::move(states), WorldOptions{});
+  return World(std::move(models), std::move(states), WorldDef{});
 }
 
 TEST(ConservationMonitor, SweepReportsTheLargestDriftOnceAPassIsComplete) {

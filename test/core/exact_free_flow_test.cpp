@@ -43,7 +43,7 @@ BodyModel Renamed(const BodyModel& model, const std::string& name) {
 
 World MakeWorld(std::vector<BodyModel> models, std::vector<BodyState> states, double dt_s,
                 std::size_t threads = 1) {
-  WorldOptions options;
+  WorldDef options;
   options.integrator = "exact_free";
   options.dt_s = dt_s;
   options.threads = threads;
@@ -194,7 +194,7 @@ TEST(ExactFreeFlow, TorqueKickStartsAgain) {
 TEST(ExactFreeFlow, GravityKeepsTheFlow) {
   const BodyModel model = test::Diag123Body();
   const BodyState initial = Tumbling();
-  WorldOptions options;
+  WorldDef options;
   options.integrator = "exact_free";
   options.dt_s = 0.2;
   options.gravity = {0.0, 0.0, -9.81};

@@ -426,7 +426,7 @@ TEST(Shapes, ResolutionOneIsRefused) {
 // ---- stepping ---------------------------------------------------------------
 
 std::vector<BodyState> StepWorld(const BodyModel& model, const BodyState& start,
-                                 const WorldOptions& options, int steps) {
+                                 const WorldDef& options, int steps) {
   World world({model}, {start}, options);
   BodyWrench push;
   push.body = world.id(0);
@@ -458,7 +458,7 @@ TEST(InertialBody, StepsLikeTheParticleBodyOfTheSameTensor) {
   start.angular_momentum = {0.3, -0.2, 0.4};
   for (const bool loaded : {false, true}) {
     SCOPED_TRACE(loaded ? "gravity and a body wrench" : "torque-free");
-    WorldOptions options;
+    WorldDef options;
     if (loaded) options.gravity = {0, 0, -9.81};
     const std::vector<BodyState> a = StepWorld(particles, start, options, 1000);
     const std::vector<BodyState> b = StepWorld(inertial, start, options, 1000);
@@ -482,7 +482,7 @@ TEST(InertialBody, TumblesLikeTheParticleBodyOfTheSameNumbers) {
       {0.1, 0.2, 0.0}, {0.4, -0.3, 6.0});
   for (const bool loaded : {false, true}) {
     SCOPED_TRACE(loaded ? "gravity and a body wrench" : "torque-free");
-    WorldOptions options;
+    WorldDef options;
     if (loaded) options.gravity = {0, 0, -9.81};
     const BodyState a = StepWorld(particles, start, options, 1000).back();
     const BodyState b = StepWorld(inertial, start, options, 1000).back();

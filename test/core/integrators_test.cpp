@@ -147,7 +147,7 @@ TEST_P(EveryIntegrator, PushedPointMassAcceleratesAsFOverMThroughTheWorld) {
         Eigen::Quaterniond(uniform(rng), uniform(rng), uniform(rng), uniform(rng)).normalized();
     if (trial % 2 == 1)
       initial.linear_momentum = m * Eigen::Vector3d(uniform(rng), uniform(rng), uniform(rng));
-    WorldOptions options;
+    WorldDef options;
     options.integrator = GetParam();
     options.dt_s = dt;
     World world({point}, {initial}, options);

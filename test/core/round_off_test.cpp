@@ -51,7 +51,7 @@ TEST_P(CasimirComposition, TorqueFreeRoundOffWalksLikeTheRootOfTheSteps) {
   const double alone_error = test::AngleBetween(alone.orientation, exact);
   EXPECT_LT(alone_error, RandomWalkBound()) << "one by one";
 
-  WorldOptions options;
+  WorldDef options;
   options.integrator = GetParam();
   options.dt_s = kDt;
   std::vector<BodyModel> copies;

@@ -57,7 +57,7 @@ World MakeFreeWorld(const std::string& integrator, double dt_s) {
     states.push_back(state);
   }
   states[11].angular_momentum *= 400.0;  // |ω| dt ≈ 1: past the lanes' 1/16
-  WorldOptions options;
+  WorldDef options;
   options.integrator = integrator;
   options.dt_s = dt_s;
   return World(std::move(models), std::move(states), options);
@@ -216,7 +216,7 @@ TEST_P(CasimirScheme, StepFreeOfABatchAtLargeStepsIsStepBodyByBody) {
 // of which takes one step past the series' range: the wide lanes.
 World WideLanesWorld(const std::string& scheme, const std::vector<BodyModel>& models,
                      const std::vector<BodyState>& states) {
-  WorldOptions options;
+  WorldDef options;
   options.integrator = scheme;
   options.dt_s = 0.25;
   World world(models, states, options);
@@ -323,7 +323,7 @@ TEST(LoadedLanes, TopsAndSpheresUnderCouplesAtLargeStepsAreStepBodyByBody) {
     if (i % 8 == 5) loads[i].AddBodyCouple({0.0, 0.0, 0.01});
     bodies.push_back(i);
   }
-  const World world(models, initial, WorldOptions{});
+  const World world(models, initial, WorldDef{});
   // Past the series for the least reach of the three (casimir_rkn4's 0.75
   // dt), within the wide range for the largest (casimir_rkn6's 1.33 dt and
   // kicks of 2.5 dt).
@@ -373,7 +373,7 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
   // force, body-axes terms, both or neither): the World's batches against
   // Step with the same loads, body by body.
   const double dt = 1e-3;
-  WorldOptions options;
+  WorldDef options;
   options.integrator = GetParam();
   options.dt_s = dt;
   options.gravity = {0.3, -0.2, -9.81};
@@ -523,7 +523,7 @@ TEST_P(EveryScheme, SubsteppedBodiesInBatchesAreStepBodyByBody) {
     state.angular_momentum = {0.3, spin, 0.2};
     states.push_back(state);
   }
-  WorldOptions options;
+  WorldDef options;
   options.integrator = GetParam();
   options.dt_s = dt;
   World world(models, states, options);
@@ -599,11 +599,11 @@ TEST_P(EveryScheme, StepLoadedWithALaneCacheIsStepLoadedWithout) {
 
 class LaneCacheOf : public ::testing::TestWithParam<std::size_t> {};
 
-INSTANTIATE_TEST_SUITE_P(
-    Core, LaneCacheOf,
-    // Blocks of 8 lanes: the reused block once and a half per step, and of up
-    // to 16: many times.
-    ::testing::Values(LaneCache::kKeptBlocks * 8 + 8 + 3, LaneCache::kKeptBlocks * 16 + 50));
+INSTANTIATE_TEST_SUITE_P(Core, LaneCacheOf,
+                         // Blocks of 8 lanes: the reused block once and a half per step, and of up
+                         // to 16: many times.
+                         ::testing::Values(LaneCache::kKeptBlocks * 8 + 8 + 3,
+                                           LaneCache::kKeptBlocks * 16 + 50));
 
 TEST_P(LaneCacheOf, BlocksPastTheKeptOnesGiveWhatTheKeptOnesGive) {
   // More world-pushed bodies than the kept blocks of one group hold, so the
@@ -618,7 +618,7 @@ TEST_P(LaneCacheOf, BlocksPastTheKeptOnesGiveWhatTheKeptOnesGive) {
         test::DiagonalBody({1.0, 1.5, 2.0}, {0.1, 0.0, 0.0}, "body" + std::to_string(i)));
     states[i].angular_momentum = {0.3, 1.0 + 1e-3 * i, -0.2};
   }
-  WorldOptions options;
+  WorldDef options;
   options.integrator = kDefaultIntegrator;
   World world(models, states, options);
   std::vector<BodyState> cached = world.states();
@@ -658,12 +658,12 @@ TEST(LaneCacheReplay, ABatchOfOtherBodiesInTheSamePlaceGathersThem) {
   std::vector<BodyModel> models;
   std::vector<BodyState> states(24);
   for (std::size_t i = 0; i < states.size(); ++i) {
-    models.push_back(
-        test::DiagonalBody({1.0, 1.5, 2.0 + 0.01 * i}, {0.1, 0.0, 0.0}, "body" + std::to_string(i)));
+    models.push_back(test::DiagonalBody({1.0, 1.5, 2.0 + 0.01 * i}, {0.1, 0.0, 0.0},
+                                        "body" + std::to_string(i)));
     states[i].angular_momentum = {0.3, 1.0 + 1e-3 * i, -0.2};
   }
   const double dt = 1e-3;
-  World world(models, states, WorldOptions{});
+  World world(models, states, WorldDef{});
   std::vector<BodyState> cached = world.states();
   std::vector<BodyState> uncached = cached;
   std::vector<HeldLoads> loads(states.size());
@@ -728,8 +728,8 @@ TEST_P(EveryScheme, StatesWrittenBetweenStepsAreWhereTheNextStepStarts) {
   for (int n = 0; n < 3; ++n) world.Step();
   BodyState moved = world.state(5);
   moved.position.x() += 0.5;
-  moved.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY())) *
-                      moved.orientation;
+  moved.orientation =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitY())) * moved.orientation;
   moved.angular_momentum *= 0.5;
   world.SetBodyState(world.id(5), moved);
   ExpectStepOfARebuiltWorld(&world, "SetBodyState");
@@ -752,7 +752,7 @@ TEST_P(EveryScheme, StatesWrittenBetweenStepsAreWhereTheNextStepStarts) {
     state.angular_momentum = {0.3, 6.0, 0.2};  // about 0.6 rad a step of 0.1 s
     states.push_back(state);
   }
-  WorldOptions options;
+  WorldDef options;
   options.integrator = GetParam();
   options.dt_s = 0.1;
   World spun(models, states, options);
@@ -761,8 +761,8 @@ TEST_P(EveryScheme, StatesWrittenBetweenStepsAreWhereTheNextStepStarts) {
   spun.Step();
   EXPECT_GT(spun.last_step_substeps_max(), 1u);
   BodyState turned = spun.state(3);
-  turned.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX())) *
-                       turned.orientation;
+  turned.orientation =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.2, Eigen::Vector3d::UnitX())) * turned.orientation;
   spun.SetBodyState(spun.id(3), turned);
   ExpectStepOfARebuiltWorld(&spun, "SetBodyState in a substep batch");
 }

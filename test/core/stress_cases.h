@@ -95,7 +95,7 @@ inline bool DrawWrenches(std::mt19937_64* rng, double max_force, double max_coup
 // The collinear rod (tilted, tumbling) and a single particle (moving) in one
 // World under gravity: the degenerate bodies of the loaded stress.
 inline World RodAndParticleWorld(const std::string& integrator, double dt_s) {
-  WorldOptions options;
+  WorldDef options;
   options.integrator = integrator;
   options.dt_s = dt_s;
   options.gravity = {0, 0, -9.81};

@@ -172,7 +172,7 @@ TEST(Stress, SpinSweepThroughTheWorldUpToHOmegaTen) {
     for (const Vector3d& direction : directions) {
       const BodyState initial = StateFromTwist(body, Vector3d::Zero(), test::kTilt,
                                                Vector3d::Zero(), test::kTilt * (omega * direction));
-      WorldOptions options;
+      WorldDef options;
       options.dt_s = kDt;
       World world({body}, {initial}, options);
       const double e0 = KineticEnergy(body, initial);
@@ -400,7 +400,7 @@ TEST(Stress, RandomParticleForcesKeepEveryStateFinite) {
       states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), test::kTilt,
                                  Vector3d(0, 0.1, 0), Vector3d(0.3, -1.0, 2.0));
     }
-    WorldOptions options;
+    WorldDef options;
     options.integrator = name;
     options.dt_s = kDt;
     options.gravity = {0, 0, -9.81};

@@ -209,13 +209,19 @@ TEST(Validate, SiteNamesAreUniqueAmongBodiesAndSites) {
 
   BodyDef point{test::PointBody()};
   point.frames.sites = {{"rod", {}, {}}};
-  EXPECT_EQ(MessageOf([&] { CheckBodyDefs({rod, point}, world); }),
+  EXPECT_EQ(MessageOf([&] {
+              CheckBodyDefs({rod, point}, world);
+            }),
             "bodies[1] (name 'point'): sites[0]: name 'rod' duplicates bodies[0]");
   point.frames.sites = {{"tip", {}, {}}};
-  EXPECT_EQ(MessageOf([&] { CheckBodyDefs({rod, point}, world); }),
+  EXPECT_EQ(MessageOf([&] {
+              CheckBodyDefs({rod, point}, world);
+            }),
             "bodies[1] (name 'point'): sites[0]: name 'tip' duplicates a site of bodies[0]");
   BodyDef tip{BodyModel("tip", {{1.0, {0, 0, 0}}})};
-  EXPECT_EQ(MessageOf([&] { CheckBodyDefs({rod, tip}, world); }),
+  EXPECT_EQ(MessageOf([&] {
+              CheckBodyDefs({rod, tip}, world);
+            }),
             "bodies[1] (name 'tip'): name duplicates a site of bodies[0]");
   // The World checks as CheckBodyDefs does, and frees a removed body's names.
   World scene({}, {}, world);

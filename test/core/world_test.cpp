@@ -11,7 +11,7 @@
 namespace rigid_body_sim::core {
 namespace {
 
-World MakeWorld(const WorldOptions& options) {
+World MakeWorld(const WorldDef& options) {
   std::vector<BodyModel> models = {test::Diag123Body(), test::RodBody(), test::PointBody(),
                                    BodyModel("box", MakeBox(2.0, {0.1, 0.2, 0.3}, 2))};
   std::vector<BodyState> states(models.size());
@@ -23,7 +23,7 @@ World MakeWorld(const WorldOptions& options) {
 }
 
 TEST(World, TimeIsStartPlusStepsTimesDt) {
-  WorldOptions options;
+  WorldDef options;
   options.dt_s = 1e-3;
   options.start_time_s = 1700000000.25;
   World world = MakeWorld(options);
@@ -33,7 +33,7 @@ TEST(World, TimeIsStartPlusStepsTimesDt) {
 }
 
 TEST(World, IsDeterministicToTheBit) {
-  WorldOptions options;
+  WorldDef options;
   options.gravity = {0, 0, -9.81};
   auto run = [&] {
     World world = MakeWorld(options);
@@ -54,7 +54,7 @@ TEST(World, IsDeterministicToTheBit) {
 }
 
 TEST(World, GravityScalesPerBody) {
-  WorldOptions options;
+  WorldDef options;
   options.dt_s = 0.01;
   options.gravity = {0.0, 0.0, -9.81};
   const std::vector<Particle> point = {{2.0, {0.3, -0.1, 0.2}}};
@@ -81,7 +81,7 @@ TEST(World, RejectsPropertiesItCannotSimulate) {
   std::vector<BodyProperties> properties(1);
   properties[0].angular_damping_per_s = -1.0;
   try {
-    World({test::PointBody()}, {BodyState{}}, WorldOptions{}, properties);
+    World({test::PointBody()}, {BodyState{}}, WorldDef{}, properties);
     FAIL() << "negative damping accepted";
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("angular_damping must be a finite number >= 0"),
@@ -90,7 +90,7 @@ TEST(World, RejectsPropertiesItCannotSimulate) {
 }
 
 TEST(World, AddedBodyMovesFromTheNextStepAndResetsToItsAddedState) {
-  WorldOptions options;
+  WorldDef options;
   options.dt_s = 0.01;
   options.gravity = {0.0, 0.0, -9.81};
   World world = MakeWorld(options);
@@ -110,7 +110,7 @@ TEST(World, AddedBodyMovesFromTheNextStepAndResetsToItsAddedState) {
 }
 
 TEST(World, RefusedBodyLeavesTheWorldAsItWas) {
-  World world = MakeWorld(WorldOptions{});
+  World world = MakeWorld(WorldDef{});
   try {
     world.AddBody(test::RodBody(), BodyState{}, BodyProperties{});
     FAIL() << "duplicate name accepted";
@@ -127,7 +127,7 @@ TEST(World, RefusedBodyLeavesTheWorldAsItWas) {
 }
 
 TEST(World, RemovedBodyTakesItsWrenchesAndTheOthersKeepTheirs) {
-  World world = MakeWorld(WorldOptions{});
+  World world = MakeWorld(WorldDef{});
   ParticleWrench push;
   push.body = world.id(2);  // the point body, after the one removed
   push.force = {4.0, 0.0, 0.0};
@@ -147,7 +147,7 @@ TEST(World, RemovedBodyTakesItsWrenchesAndTheOthersKeepTheirs) {
 }
 
 TEST(World, AStaleIdIsCaughtNeverTakenForTheBodyInItsSlot) {
-  World world = MakeWorld(WorldOptions{});
+  World world = MakeWorld(WorldDef{});
   const BodyId rod = *world.FindBody("rod");
   world.RemoveBody(rod);
   const BodyId fresh = world.AddBody(test::RodBody(), BodyState{}, BodyProperties{});
@@ -171,7 +171,7 @@ TEST(World, ListenersHearOfEveryAddAndRemoveAfterTheFact) {
       heard.push_back(world.IndexOf(id) ? "-still there" : "-gone");
     }
   };
-  World world = MakeWorld(WorldOptions{});
+  World world = MakeWorld(WorldDef{});
   Recorder recorder;
   world.AddListener(&recorder);
   const BodyId late = world.AddBody(BodyModel("late", {{1.0, {0, 0, 0}}}), {}, {});
@@ -184,7 +184,7 @@ TEST(World, ListenersHearOfEveryAddAndRemoveAfterTheFact) {
 }
 
 TEST(World, DampedBodiesDecayExponentiallyThroughTheWorld) {
-  WorldOptions options;
+  WorldDef options;
   options.dt_s = 0.01;
   std::vector<BodyState> states(2);
   states[0].angular_momentum = {0.3, -2.0, 0.7};
@@ -207,7 +207,7 @@ TEST(World, DampedBodiesDecayExponentiallyThroughTheWorld) {
 }
 
 TEST(World, GravityAndWrenchesFollowTheirStartTimes) {
-  WorldOptions options;
+  WorldDef options;
   options.dt_s = 0.01;
   options.gravity = {0, 0, -9.81};
   options.wrench_timeout_s = 0.05;
@@ -243,7 +243,7 @@ TEST(World, RecordsTheStartVelocityAndTotalWrenchOfARequestedStepOnly) {
   properties[0].linear_damping_per_s = 0.5;
   properties[0].angular_damping_per_s = 0.25;
   properties[1].gravity_scale = 0.0;  // "resting": at rest and unloaded, skipped by Step
-  WorldOptions options;
+  WorldDef options;
   options.gravity = {0.0, 0.0, -9.81};
   World world({body, BodyModel("resting", {{1.0, {0, 0, 0}}})}, {moving, BodyState{}}, options,
               properties);
@@ -298,7 +298,7 @@ TEST(World, RecordsTheStartVelocityOfTheBodyFramesOrigin) {
   BodyFrames reference;
   reference.origin = FrameOrigin::kReference;
   World world({dumbbell, BodyModel("referenced", {{1.0, {0, 0, 0}}, {1.0, {2, 0, 0}}})},
-              {spinning, spinning}, WorldOptions{}, {}, {BodyFrames{}, reference});
+              {spinning, spinning}, WorldDef{}, {}, {BodyFrames{}, reference});
   world.RecordNextStep();
   world.Step();
   EXPECT_EQ(world.last_step_record(0)->start_velocity_mps, Eigen::Vector3d::Zero());
@@ -307,7 +307,7 @@ TEST(World, RecordsTheStartVelocityOfTheBodyFramesOrigin) {
 }
 
 TEST(World, ResetRestoresBodiesAndClearsWrenchesButTimeGoesOn) {
-  World world = MakeWorld(WorldOptions{});
+  World world = MakeWorld(WorldDef{});
   ParticleWrench push;
   push.body = world.id(0);
   push.force = {1, 1, 1};
@@ -322,7 +322,7 @@ TEST(World, ResetRestoresBodiesAndClearsWrenchesButTimeGoesOn) {
 }
 
 TEST(World, RodKeepsLInTheRangeOfIAndCountsDroppedCouples) {
-  World world = MakeWorld(WorldOptions{});
+  World world = MakeWorld(WorldDef{});
   ParticleWrench twist;
   twist.body = world.id(1);
   twist.couple = {0.0, 0.0, 2.0};  // along the rod's axis at the start
@@ -338,10 +338,10 @@ TEST(World, RodKeepsLInTheRangeOfIAndCountsDroppedCouples) {
 }
 
 TEST(World, BadOptionsAreNamed) {
-  WorldOptions options;
+  WorldDef options;
   options.integrator = "leapfrog";
   EXPECT_THROW(MakeWorld(options), std::invalid_argument);
-  options = WorldOptions{};
+  options = WorldDef{};
   options.dt_s = 0.0;
   try {
     MakeWorld(options);
@@ -353,7 +353,7 @@ TEST(World, BadOptionsAreNamed) {
   std::vector<BodyState> too_fast(1);
   too_fast[0].linear_momentum = {2.0 * 3.5e8, 0.0, 0.0};  // 3.5e8 m/s
   try {
-    World(one, too_fast, WorldOptions{});
+    World(one, too_fast, WorldDef{});
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -361,7 +361,7 @@ TEST(World, BadOptionsAreNamed) {
   }
   std::vector<BodyModel> twins = {test::RodBody(), test::RodBody()};
   try {
-    World(twins, std::vector<BodyState>(2), WorldOptions{});
+    World(twins, std::vector<BodyState>(2), WorldDef{});
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), "bodies[1] (name 'rod'): name duplicates bodies[0]");
@@ -370,12 +370,12 @@ TEST(World, BadOptionsAreNamed) {
 
 // The setters between steps: each in force from the next step on, time and
 // states going on.
-World MakePointWorld(const WorldOptions& options) {
+World MakePointWorld(const WorldDef& options) {
   return World({test::PointBody()}, std::vector<BodyState>(1), options);
 }
 
 TEST(World, AGravityChangeMidRunGivesTheExactFallOfTheNewGFromThatStepOn) {
-  WorldOptions options;
+  WorldDef options;
   options.dt_s = 0.01;
   options.gravity = {0, 0, -9.81};
   World world = MakePointWorld(options);
@@ -403,7 +403,7 @@ TEST(World, AGravityChangeMidRunGivesTheExactFallOfTheNewGFromThatStepOn) {
 }
 
 TEST(World, AWrenchTimeoutChangeAppliesToTheWrenchesAlreadyHeld) {
-  WorldOptions options;
+  WorldDef options;
   options.dt_s = 0.01;
   World world = MakePointWorld(options);  // held until replaced
   ParticleWrench push;
@@ -428,7 +428,7 @@ TEST(World, AWrenchTimeoutChangeAppliesToTheWrenchesAlreadyHeld) {
 }
 
 TEST(World, AnIntegratorSwapKeepsStatesAndTimeAndStepsWithTheNewScheme) {
-  WorldOptions options;
+  WorldDef options;
   options.gravity = {0, 0, -9.81};
   World world = MakeWorld(options);
   for (int n = 0; n < 100; ++n) world.Step();
@@ -443,7 +443,7 @@ TEST(World, AnIntegratorSwapKeepsStatesAndTimeAndStepsWithTheNewScheme) {
     EXPECT_EQ(std::memcmp(&world.state(i), &before[i], sizeof(BodyState)), 0) << "body " << i;
   }
   // The next step is rk4's from those states.
-  WorldOptions rk4 = options;
+  WorldDef rk4 = options;
   rk4.integrator = "rk4";
   rk4.start_time_s = time;
   World fresh(world.models(), before, rk4);
@@ -467,7 +467,7 @@ namespace rigid_body_sim::core {
 namespace {
 
 TEST(World, AHugeForceFreezesOnlyThatBodyAtItsLastGoodState) {
-  World world = MakeWorld(WorldOptions{});
+  World world = MakeWorld(WorldDef{});
   for (int n = 0; n < 10; ++n) world.Step();
   ParticleWrench absurd;
   absurd.body = world.id(3);  // the box
@@ -498,7 +498,7 @@ TEST(World, AHugeForceFreezesOnlyThatBodyAtItsLastGoodState) {
 }
 
 TEST(World, AFastSpinIsSubsteppedAndOnlyBeyondMaxSubstepsFrozen) {
-  WorldOptions options;
+  WorldDef options;
   options.dt_s = 1e-3;
   options.max_substeps = 10;
   options.integrator = "rk4";  // its error rate is |ω|
@@ -528,7 +528,7 @@ TEST(World, NSubstepsAreNStepsOfDtOverN) {
   // substeps; the result is that of a world stepping at dt/n, to round-off.
   for (const std::string& integrator : IntegratorNames()) {
     SCOPED_TRACE(integrator);
-    WorldOptions coarse;
+    WorldDef coarse;
     coarse.integrator = integrator;
     coarse.dt_s = 1e-3;
     const BodyModel body = test::Diag123Body();
@@ -541,7 +541,7 @@ TEST(World, NSubstepsAreNStepsOfDtOverN) {
       continue;
     }
     ASSERT_GT(n, 1u);
-    WorldOptions fine = coarse;
+    WorldDef fine = coarse;
     fine.dt_s = 1e-3 / n;
     World reference({body}, {state}, fine);
     world.Step();

@@ -1,4 +1,4 @@
-// World::Step with WorldOptions::threads > 1 against the same World stepped
+// World::Step with WorldDef::threads > 1 against the same World stepped
 // by one thread: every body's state, fault and the step's counts are the
 // same bit for bit, for free, pushed, damped, substepped, rank-deficient and
 // frozen bodies, whichever thread takes them and whichever bodies share
@@ -61,7 +61,7 @@ World MakeMixedWorld(std::size_t threads) {
     if (i % 17 == 3) body.angular_damping_per_s = 200.0;  // c·dt = 0.2
     properties.push_back(body);
   }
-  WorldOptions options;
+  WorldDef options;
   options.gravity = {0.3, -0.2, -9.81};
   options.max_substeps = 50;
   options.threads = threads;
@@ -113,7 +113,7 @@ TEST(WorldThreads, StepsAreBitForBitThoseOfOneThread) {
 }
 
 TEST(WorldThreads, MoreThreadsThanBodiesLeaveBlocksEmpty) {
-  WorldOptions options;
+  WorldDef options;
   options.threads = 3;
   BodyState state;
   state.angular_momentum = {0.1, 0.2, 0.3};
@@ -128,7 +128,7 @@ TEST(WorldThreads, MoreThreadsThanBodiesLeaveBlocksEmpty) {
 }
 
 TEST(WorldThreads, NoThreadIsRefused) {
-  WorldOptions options;
+  WorldDef options;
   options.threads = 0;
   EXPECT_THROW(World({test::Diag123Body()}, {BodyState{}}, options), std::invalid_argument);
 }

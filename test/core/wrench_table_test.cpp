@@ -245,7 +245,8 @@ TEST_F(WrenchTableTest, ClearBodyDropsOneBodysWrenchesOnly) {
 }
 
 TEST_F(WrenchTableTest, RemovedBodysWrenchesGoAndTheOthersKeepTheirsAfterMovingDown) {
-  const BodyId third = store_.Add(BodyDef{BodyModel("third", {{1.0, {0, 0, 0}}, {1.0, {1, 0, 0}}})});
+  const BodyId third =
+      store_.Add(BodyDef{BodyModel("third", {{1.0, {0, 0, 0}}, {1.0, {1, 0, 0}}})});
   table_.AddBody(third, 2);
   const BodyId first = Id(0);
   table_.Hold(WorldForce(first, 1, {1, 0, 0}));

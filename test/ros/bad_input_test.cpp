@@ -83,10 +83,12 @@ class BadInput : public ::testing::Test {
   void ExpectUnchangedAndAlive(const ros::Time& after) {
     auto& sim = TheSim();
     std::optional<rigid_body_sim::BodyStateArray> m;
-    ASSERT_TRUE(WaitFor([&] {
-      m = sim.bodies.Latest();
-      return m && m->header.stamp > after;
-    }, rbs_test::kMessageTimeout))
+    ASSERT_TRUE(WaitFor(
+        [&] {
+          m = sim.bodies.Latest();
+          return m && m->header.stamp > after;
+        },
+        rbs_test::kMessageTimeout))
         << "no ~bodies after the bad input: node dead or stuck";
     const auto* b = FindBody(*m, "tri");
     ASSERT_NE(b, nullptr);
@@ -106,8 +108,7 @@ class BadInput : public ::testing::Test {
                       const std::string& what) {
     auto& sim = TheSim();
     ASSERT_TRUE(sim.EnsureConnected());
-    ASSERT_TRUE(WaitFor([&] { return diag->Get("rejected_messages").has_value(); },
-                        kDiagTimeout))
+    ASSERT_TRUE(WaitFor([&] { return diag->Get("rejected_messages").has_value(); }, kDiagTimeout))
         << "/diagnostics has no key rejected_messages; keys: " << diag->Dump();
     const double before = *diag->Get("rejected_messages");
     auto reason_key = diag->FindKey(reason, "rejected_messages");
@@ -116,8 +117,8 @@ class BadInput : public ::testing::Test {
         sim.bodies.Latest() ? sim.bodies.Latest()->header.stamp : ros::Time(0);
 
     send();
-    EXPECT_TRUE(WaitFor([&] { return *diag->Get("rejected_messages") >= before + count; },
-                        kDiagTimeout))
+    EXPECT_TRUE(
+        WaitFor([&] { return *diag->Get("rejected_messages") >= before + count; }, kDiagTimeout))
         << what << ": rejected_messages stayed " << *diag->Get("rejected_messages");
     // One more diagnostics message: the count must not go on growing.
     const std::size_t n = diag->Count();
@@ -148,8 +149,8 @@ TEST_F(BadInput, StartsWithZeroRejected) {
 }
 
 TEST_F(BadInput, NaNForceRejected) {
-  ExpectRejected([] { TheSim().Publish(MakeWrench("tri", 0, kNaN, 0, 0), false); }, 1,
-                 IsNonFinite, "NaN force");
+  ExpectRejected([] { TheSim().Publish(MakeWrench("tri", 0, kNaN, 0, 0), false); }, 1, IsNonFinite,
+                 "NaN force");
 }
 
 TEST_F(BadInput, InfiniteTorqueRejected) {
@@ -158,9 +159,8 @@ TEST_F(BadInput, InfiniteTorqueRejected) {
 }
 
 TEST_F(BadInput, NegativeInfiniteForceInBodyFrameRejected) {
-  ExpectRejected(
-      [] { TheSim().Publish(MakeWrench("tri", 2, 0, 0, -kInf, 0, 0, 0, "tri"), false); }, 1,
-      IsNonFinite, "-inf force, body frame");
+  ExpectRejected([] { TheSim().Publish(MakeWrench("tri", 2, 0, 0, -kInf, 0, 0, 0, "tri"), false); },
+                 1, IsNonFinite, "-inf force, body frame");
 }
 
 TEST_F(BadInput, UnknownBodyRejected) {
@@ -169,8 +169,8 @@ TEST_F(BadInput, UnknownBodyRejected) {
 }
 
 TEST_F(BadInput, ParticleOutOfRangeRejected) {
-  ExpectRejected([] { TheSim().Publish(MakeWrench("tri", 3, 1, 0, 0), false); }, 1,
-                 IsOutOfRange, "particle index 3 of 3");
+  ExpectRejected([] { TheSim().Publish(MakeWrench("tri", 3, 1, 0, 0), false); }, 1, IsOutOfRange,
+                 "particle index 3 of 3");
   ExpectRejected([] { TheSim().Publish(MakeWrench("tri", 0xffffffffu, 1, 0, 0), false); }, 1,
                  IsOutOfRange, "particle index 2^32-1");
 }

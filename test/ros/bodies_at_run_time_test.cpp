@@ -37,7 +37,8 @@ typename Srv::Response Call(const std::string& service, Srv srv) {
   static std::map<std::string, ros::ServiceClient> clients;
   for (int attempt = 0; attempt < 2; ++attempt) {
     ros::ServiceClient& client = clients[service];
-    if (!client.isValid()) client = ros::NodeHandle().serviceClient<Srv>(TheSim().Name(service), true);
+    if (!client.isValid())
+      client = ros::NodeHandle().serviceClient<Srv>(TheSim().Name(service), true);
     if (client.call(srv)) return srv.response;
     client.shutdown();
   }
@@ -91,8 +92,8 @@ TEST_F(BodiesAtRunTime, SpawnedBodyMovesFromTheNextStepWithItsTopics) {
   const double t = 100 * kDt;
   // Free fall from its spawn state, exact for a constant force.
   EXPECT_VEC3_NEAR(s.bodies[1].pose.position, 1.0, 2.0 * t, 2.0 - 0.5 * 9.81 * t * t, kRoundOff);
-  EXPECT_TRUE(WaitFor([&] { return Advertised(sim.Name("ball/pose")) && Advertised(sim.Name("ball/odom")); },
-                      10.0))
+  EXPECT_TRUE(WaitFor(
+      [&] { return Advertised(sim.Name("ball/pose")) && Advertised(sim.Name("ball/odom")); }, 10.0))
       << "the spawned body's topics never appeared";
   ASSERT_TRUE(Delete("ball").success);
 }
@@ -101,16 +102,19 @@ TEST_F(BodiesAtRunTime, SpawnedBodyMovesFromTheNextStepWithItsTopics) {
 // once: they must go on working without it.
 TEST_F(BodiesAtRunTime, SpawnedBodysTopicsPublishAndTakeWrenches) {
   auto& sim = TheSim();
-  ASSERT_TRUE(Spawn("{name: pushed, shape: sphere, mass: 0.5, radius: 0.05, position: [1.0, 0.0, 1.0], "
-                    "gravity_scale: 0.0}")
-                  .success);
+  ASSERT_TRUE(
+      Spawn("{name: pushed, shape: sphere, mass: 0.5, radius: 0.05, position: [1.0, 0.0, 1.0], "
+            "gravity_scale: 0.0}")
+          .success);
   ros::NodeHandle nh;
   std::atomic<int> poses{0};
   ros::Subscriber pose_sub = nh.subscribe<geometry_msgs::PoseStamped>(
-      sim.Name("pushed/pose"), 10, [&poses](const geometry_msgs::PoseStamped::ConstPtr&) { ++poses; });
-  ros::Publisher wrench_pub = nh.advertise<geometry_msgs::WrenchStamped>(sim.Name("pushed/wrench"), 10);
-  ASSERT_TRUE(WaitFor([&] { return pose_sub.getNumPublishers() > 0 && wrench_pub.getNumSubscribers() > 0; },
-                      10.0))
+      sim.Name("pushed/pose"), 10,
+      [&poses](const geometry_msgs::PoseStamped::ConstPtr&) { ++poses; });
+  ros::Publisher wrench_pub =
+      nh.advertise<geometry_msgs::WrenchStamped>(sim.Name("pushed/wrench"), 10);
+  ASSERT_TRUE(WaitFor(
+      [&] { return pose_sub.getNumPublishers() > 0 && wrench_pub.getNumSubscribers() > 0; }, 10.0))
       << "never connected to the spawned body's pose and wrench topics";
   geometry_msgs::WrenchStamped wrench;
   wrench.wrench.force.x = 0.5;
@@ -139,11 +143,13 @@ TEST_F(BodiesAtRunTime, BadEntriesAreRefusedAsAScene) {
   const auto light = Spawn("{name: light, particles: [{mass: -1.0, position: [0, 0, 0]}]}");
   EXPECT_FALSE(light.success);
   EXPECT_EQ(light.message, "bodies[1] (name 'light'): particles[0].mass must be > 0, got -1");
-  const auto damped = Spawn("{name: damped, shape: sphere, mass: 1.0, radius: 0.1, linear_damping: -2}");
+  const auto damped =
+      Spawn("{name: damped, shape: sphere, mass: 1.0, radius: 0.1, linear_damping: -2}");
   EXPECT_FALSE(damped.success);
   EXPECT_NE(damped.message.find("linear_damping must be a finite number >= 0"), std::string::npos)
       << damped.message;
-  const auto typo = Spawn("{name: typo, shape: sphere, mass: 1.0, radius: 0.1, velocity: [1, 0, 0]}");
+  const auto typo =
+      Spawn("{name: typo, shape: sphere, mass: 1.0, radius: 0.1, velocity: [1, 0, 0]}");
   EXPECT_FALSE(typo.success);
   EXPECT_NE(typo.message.find("unknown key 'velocity'"), std::string::npos) << typo.message;
   const auto broken = Spawn("{name: [broken");
@@ -192,7 +198,8 @@ TEST_F(BodiesAtRunTime, ResetBringsSpawnedBodiesToTheirSpawnStateAndKeepsDeletio
   ASSERT_TRUE(sim.StepAndGet(1, &s));
   ASSERT_EQ(s.bodies.size(), 1u);
   EXPECT_EQ(s.bodies[0].name, "bouncer");
-  EXPECT_VEC3_NEAR(s.bodies[0].pose.position, 1.0, 2.0 * kDt, 5.0 - 0.5 * 9.81 * kDt * kDt, kRoundOff);
+  EXPECT_VEC3_NEAR(s.bodies[0].pose.position, 1.0, 2.0 * kDt, 5.0 - 0.5 * 9.81 * kDt * kDt,
+                   kRoundOff);
   // The scene's body back, for the tests after this one.
   ASSERT_TRUE(Delete("bouncer").success);
   ASSERT_TRUE(Spawn("{name: crate, shape: box, mass: 2.0, size: [0.2, 0.2, 0.2], resolution: 2, "
@@ -206,7 +213,8 @@ TEST_F(BodiesAtRunTime, SpawnAndDeleteWhileAThousandWrenchesASecondArrive) {
   std::atomic<bool> flooding{true};
   std::thread flood([&] {
     ros::NodeHandle nh;
-    ros::Publisher pub = nh.advertise<rigid_body_sim::ParticleWrench>(sim.Name("particle_wrench"), 1000);
+    ros::Publisher pub =
+        nh.advertise<rigid_body_sim::ParticleWrench>(sim.Name("particle_wrench"), 1000);
     ros::WallRate rate(1000.0);
     for (unsigned k = 0; flooding; ++k) {
       // The crate and the bodies that come and go, some of them unknown by then.
@@ -236,8 +244,11 @@ TEST_F(BodiesAtRunTime, SpawnAndDeleteWhileAThousandWrenchesASecondArrive) {
   ASSERT_EQ(s.bodies.size(), 1u);
   EXPECT_EQ(s.bodies[0].name, "crate");
   EXPECT_TRUE(std::isfinite(s.bodies[0].linear_momentum.x));
-  EXPECT_TRUE(WaitFor([&] { return !Advertised(sim.Name("churn_0/pose")) &&
-                                   !Advertised(sim.Name("churn_19/imu")); }, 20.0))
+  EXPECT_TRUE(WaitFor(
+      [&] {
+        return !Advertised(sim.Name("churn_0/pose")) && !Advertised(sim.Name("churn_19/imu"));
+      },
+      20.0))
       << "topics of deleted bodies left behind";
 }
 

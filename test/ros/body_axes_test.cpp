@@ -61,8 +61,7 @@ void CheckSpinnerUnderBodyForce(const std::string& frame) {
   EXPECT_NEAR(b->twist.linear.x, k * std::sin(wt) + kG[0] * t, tol) << frame;
   EXPECT_NEAR(b->twist.linear.y, k * (1 - std::cos(wt)) + kG[1] * t, tol) << frame;
   EXPECT_NEAR(b->twist.linear.z, kG[2] * t, kRoundOff) << frame;
-  EXPECT_NEAR(b->pose.position.x, k / kW0 * (1 - std::cos(wt)) + 0.5 * kG[0] * t * t, tol)
-      << frame;
+  EXPECT_NEAR(b->pose.position.x, k / kW0 * (1 - std::cos(wt)) + 0.5 * kG[0] * t * t, tol) << frame;
   EXPECT_NEAR(b->pose.position.y, k / kW0 * (wt - std::sin(wt)) + 0.5 * kG[1] * t * t, tol)
       << frame;
   EXPECT_NEAR(b->pose.position.z, 0.5 * kG[2] * t * t, kRoundOff) << frame;
@@ -113,8 +112,7 @@ TEST(BodyAxes, GravityGivesHalfGTSquared) {
   EXPECT_VEC3_NEAR(b->pose.position, 1.0 + 0.5 * kG[0] * t * t, 0.0 + 0.5 * kG[1] * t * t,
                    5.0 + 0.5 * kG[2] * t * t, kRoundOff);
   EXPECT_VEC3_NEAR(b->twist.linear, kG[0] * t, kG[1] * t, kG[2] * t, kRoundOff);
-  EXPECT_VEC3_NEAR(b->linear_momentum, kM * kG[0] * t, kM * kG[1] * t, kM * kG[2] * t,
-                   kRoundOff);
+  EXPECT_VEC3_NEAR(b->linear_momentum, kM * kG[0] * t, kM * kG[1] * t, kM * kG[2] * t, kRoundOff);
   // Gravity acts at the COM: no torque, no rotation.
   EXPECT_VEC3_NEAR(b->angular_momentum, 0.0, 0.0, 0.0, kRoundOff);
   EXPECT_NEAR(rbs_test::QuatAngle(b->pose.orientation, 0, 0, 0, 1), 0.0, kRoundOff);

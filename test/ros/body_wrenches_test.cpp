@@ -37,7 +37,8 @@ class BodyWrenches : public ::testing::Test {
     ASSERT_TRUE(sim.EnsureConnected());
     if (!wrench_pub_) {
       wrench_pub_ = Nh().advertise<geometry_msgs::WrenchStamped>(sim.Name("cube/wrench"), 10);
-      ASSERT_TRUE(WaitFor([&] { return wrench_pub_.getNumSubscribers() > 0; }, rbs_test::kStartupTimeout))
+      ASSERT_TRUE(
+          WaitFor([&] { return wrench_pub_.getNumSubscribers() > 0; }, rbs_test::kStartupTimeout))
           << "the node never subscribed to ~cube/wrench";
     }
     ASSERT_TRUE(sim.PauseAndReset());
@@ -60,8 +61,8 @@ class BodyWrenches : public ::testing::Test {
   }
 
   static rigid_body_sim::ApplyBodyWrench::Response Apply(const std::string& body, double fx,
-                                                         double fy, double fz, double px,
-                                                         double py, double pz, double duration_s,
+                                                         double fy, double fz, double px, double py,
+                                                         double pz, double duration_s,
                                                          const std::string& frame = "") {
     rigid_body_sim::ApplyBodyWrench srv;
     srv.request.body = body;
@@ -131,13 +132,14 @@ TEST_F(BodyWrenches, UnknownFrameOrNaNIsRejectedAndCounted) {
   const double frames_before = *diag.Get("rejected_unknown_frame");
   const double nan_before = *diag.Get("rejected_non_finite");
   const double all_before = *diag.Get("rejected_messages");
-  PublishBodyWrench(Wrench(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, "other"));  // another body's frame
+  PublishBodyWrench(Wrench(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, "other"));      // another body's frame
   PublishBodyWrench(Wrench(1.0, 0.0, 0.0, 0.0, 0.0, 0.0, "other_tip"));  // another body's site
   PublishBodyWrench(Wrench(std::nan(""), 0.0, 0.0, 0.0, 0.0, 0.0));
   rigid_body_sim::BodyStateArray s;
   ASSERT_TRUE(sim.StepAndGet(10, &s));
   EXPECT_VEC3_NEAR(Cube(s).linear_momentum, 0.0, 0.0, 0.0, 0.0);
-  EXPECT_TRUE(WaitFor([&] { return *diag.Get("rejected_unknown_frame") == frames_before + 2; }, 3.0));
+  EXPECT_TRUE(
+      WaitFor([&] { return *diag.Get("rejected_unknown_frame") == frames_before + 2; }, 3.0));
   EXPECT_TRUE(WaitFor([&] { return *diag.Get("rejected_non_finite") == nan_before + 1; }, 3.0));
   EXPECT_EQ(*diag.Get("rejected_messages"), all_before + 3);
 }

@@ -50,8 +50,7 @@ TEST(ConstantForce, ForceThroughComTranslatesExactlyWithoutRotation) {
   ASSERT_NE(b, nullptr);
   const double t = n * kDt;
   EXPECT_VEC3_NEAR(b->pose.position, kX0[0] + 0.5 * F[0] / kM * t * t,
-                   kX0[1] + 0.5 * F[1] / kM * t * t, kX0[2] + 0.5 * F[2] / kM * t * t,
-                   kRoundOff);
+                   kX0[1] + 0.5 * F[1] / kM * t * t, kX0[2] + 0.5 * F[2] / kM * t * t, kRoundOff);
   EXPECT_VEC3_NEAR(b->twist.linear, F[0] / kM * t, F[1] / kM * t, F[2] / kM * t, kRoundOff);
   EXPECT_VEC3_NEAR(b->linear_momentum, F[0] * t, F[1] * t, F[2] * t, kRoundOff);
   // No torque: L, ω stay 0, orientation identity.
@@ -138,8 +137,7 @@ TEST(ConstantForce, GeneralOffCentreForceShortTime) {
   EXPECT_VEC3_NEAR(b->angular_momentum, tau[0] * t, tau[1] * t, tau[2] * t, bound);
   // COM exact to round-off regardless of the rotation.
   EXPECT_VEC3_NEAR(b->pose.position, kX0[0] + 0.5 * f[0] / kM * t * t,
-                   kX0[1] + 0.5 * f[1] / kM * t * t, kX0[2] + 0.5 * f[2] / kM * t * t,
-                   kRoundOff);
+                   kX0[1] + 0.5 * f[1] / kM * t * t, kX0[2] + 0.5 * f[2] / kM * t * t, kRoundOff);
   // Unit quaternion (tf2 rejects |q|² off by 1e-3; doc/node.md says unit).
   const auto& q = b->pose.orientation;
   EXPECT_NEAR(q.x * q.x + q.y * q.y + q.z * q.z + q.w * q.w, 1.0, 1e-9);

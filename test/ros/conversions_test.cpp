@@ -11,7 +11,8 @@ TEST(Conversions, BodyStateCarriesTheStateAndWhatFollowsFromIt) {
   const core::BodyModel box("box", {{1, {-0.1, 0, 0}}, {1, {0.1, 0, 0}}, {2, {0, 0.2, 0.1}}});
   core::BodyState state;
   state.position = {1.0, -2.0, 3.0};
-  state.orientation = Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -1).normalized()));
+  state.orientation =
+      Eigen::Quaterniond(Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -1).normalized()));
   state.linear_momentum = {4.0, 0.5, -1.0};
   state.angular_momentum = {0.01, -0.02, 0.03};
   const BodyState msg = ToBodyState(box, state);

@@ -89,8 +89,8 @@ TEST(Degenerate, InitialAngularVelocityProjectedOntoRangeOfI) {
   // Steady spin about ẑ: L and ω constant, A = Rz(t).
   EXPECT_VEC3_NEAR(r->angular_momentum, 0.0, 0.0, kIrod * 1.0, kRoundOff);
   EXPECT_VEC3_NEAR(r->twist.angular, 0.0, 0.0, 1.0, kRoundOff);
-  EXPECT_NEAR(rbs_test::QuatAngle(r->pose.orientation, 0, 0, std::sin(t / 2), std::cos(t / 2)),
-              0.0, 1e-8);
+  EXPECT_NEAR(rbs_test::QuatAngle(r->pose.orientation, 0, 0, std::sin(t / 2), std::cos(t / 2)), 0.0,
+              1e-8);
   EXPECT_NEAR(r->kinetic_energy, 0.5 * kIrod * 1.0, kRoundOff);
   ExpectRodConsistent(*r);
 }
@@ -182,10 +182,12 @@ TEST(Degenerate, DroppedCoupleCountedOnDiagnostics) {
   ASSERT_TRUE(sim.SetPaused(false));
   auto is_drop = [](const std::string& k) { return k.find("drop") != std::string::npos; };
   std::optional<std::string> key;
-  const bool seen = WaitFor([&] {
-    key = diag.FindKey(is_drop);
-    return key && diag.Get(*key).value_or(0.0) > 0.0;
-  }, 6.0, 0.05);
+  const bool seen = WaitFor(
+      [&] {
+        key = diag.FindKey(is_drop);
+        return key && diag.Get(*key).value_or(0.0) > 0.0;
+      },
+      6.0, 0.05);
   EXPECT_TRUE(seen) << "no positive diagnostics key containing 'drop'; keys: " << diag.Dump();
   // Still at rest: the dropped couple did nothing while running either.
   const auto latest = sim.bodies.Latest();
@@ -217,7 +219,8 @@ TEST(Degenerate, PushedPointMassAcceleratesAsFOverMWithEveryIntegrator) {
     ASSERT_TRUE(sim.Connect());
     ASSERT_TRUE(sim.PauseAndReset());
     rigid_body_sim::ParticleWrenchArray push;
-    for (const Dot& dot : dots) push.wrenches.push_back(MakeWrench(dot.name, 0, force[0], force[1], force[2]));
+    for (const Dot& dot : dots)
+      push.wrenches.push_back(MakeWrench(dot.name, 0, force[0], force[1], force[2]));
     sim.Publish(push);
     rigid_body_sim::BodyStateArray s;
     ASSERT_TRUE(sim.StepAndGet(steps, &s));

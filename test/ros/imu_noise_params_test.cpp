@@ -51,8 +51,8 @@ TEST(ImuNoiseParams, ReadsEveryParameter) {
 }
 
 TEST(ImuNoiseParams, RejectsWhatIsNotAStddevNamingTheParameter) {
-  for (const char* key :
-       {"imu_angular_velocity_stddev", "imu_linear_acceleration_stddev", "imu_orientation_stddev"}) {
+  for (const char* key : {"imu_angular_velocity_stddev", "imu_linear_acceleration_stddev",
+                          "imu_orientation_stddev"}) {
     SCOPED_TRACE(key);
     const std::string named = std::string("~") + key + " must be a finite number >= 0, got ";
     EXPECT_EQ(ErrorOf({{key, XmlRpcValue(-0.5)}}), named + "-0.5");

@@ -1,5 +1,5 @@
-// The node's interface (doc/node.md, "Time, frames and pacing", "Subscribed", "Published", "Services",
-// parameters world_frame, tf_prefix, publish_clock).
+// The node's interface (doc/node.md, "Time, frames and pacing", "Subscribed", "Published",
+// "Services", parameters world_frame, tf_prefix, publish_clock).
 //
 // Topics and their types are read from the node's own slave API
 // (getPublications / getSubscriptions), before this test advertises or
@@ -48,8 +48,9 @@ bool NodeTopics(const std::string& method, std::map<std::string, std::string>* o
   XmlRpc::XmlRpcClient client(host.c_str(), port, "/");
   XmlRpc::XmlRpcValue req, res;
   req[0] = ros::this_node::getName();
-  if (!client.execute(method.c_str(), req, res) || res.getType() != XmlRpc::XmlRpcValue::TypeArray ||
-      res.size() < 3 || static_cast<int>(res[0]) != 1)
+  if (!client.execute(method.c_str(), req, res) ||
+      res.getType() != XmlRpc::XmlRpcValue::TypeArray || res.size() < 3 ||
+      static_cast<int>(res[0]) != 1)
     return false;
   out->clear();
   for (int i = 0; i < res[2].size(); ++i)
@@ -61,12 +62,14 @@ void ExpectTopics(const std::string& method,
                   const std::vector<std::pair<std::string, std::string>>& expected) {
   std::map<std::string, std::string> got;
   // The node may still be setting up: poll until all are there (bounded).
-  WaitFor([&] {
-    if (!NodeTopics(method, &got)) return false;
-    for (const auto& e : expected)
-      if (!got.count(e.first)) return false;
-    return true;
-  }, rbs_test::kStartupTimeout, 0.1);
+  WaitFor(
+      [&] {
+        if (!NodeTopics(method, &got)) return false;
+        for (const auto& e : expected)
+          if (!got.count(e.first)) return false;
+        return true;
+      },
+      rbs_test::kStartupTimeout, 0.1);
   for (const auto& e : expected) {
     auto it = got.find(e.first);
     if (it == got.end()) {
@@ -79,16 +82,15 @@ void ExpectTopics(const std::string& method,
 
 // Runs first (file order): nothing of ours is registered yet.
 TEST(Interface, PublishedTopicsWithTypes) {
-  ExpectTopics("getPublications",
-               {{"/rigid_body_sim/alpha/pose", "geometry_msgs/PoseStamped"},
-                {"/rigid_body_sim/alpha/twist", "geometry_msgs/TwistStamped"},
-                {"/rigid_body_sim/beta/pose", "geometry_msgs/PoseStamped"},
-                {"/rigid_body_sim/beta/twist", "geometry_msgs/TwistStamped"},
-                {"/rigid_body_sim/bodies", "rigid_body_sim/BodyStateArray"},
-                {"/rigid_body_sim/particles", "visualization_msgs/MarkerArray"},
-                {"/tf", "tf2_msgs/TFMessage"},
-                {"/diagnostics", "diagnostic_msgs/DiagnosticArray"},
-                {"/clock", "rosgraph_msgs/Clock"}});
+  ExpectTopics("getPublications", {{"/rigid_body_sim/alpha/pose", "geometry_msgs/PoseStamped"},
+                                   {"/rigid_body_sim/alpha/twist", "geometry_msgs/TwistStamped"},
+                                   {"/rigid_body_sim/beta/pose", "geometry_msgs/PoseStamped"},
+                                   {"/rigid_body_sim/beta/twist", "geometry_msgs/TwistStamped"},
+                                   {"/rigid_body_sim/bodies", "rigid_body_sim/BodyStateArray"},
+                                   {"/rigid_body_sim/particles", "visualization_msgs/MarkerArray"},
+                                   {"/tf", "tf2_msgs/TFMessage"},
+                                   {"/diagnostics", "diagnostic_msgs/DiagnosticArray"},
+                                   {"/clock", "rosgraph_msgs/Clock"}});
 }
 
 TEST(Interface, SubscribedTopicsWithTypes) {
@@ -182,10 +184,12 @@ TEST(Interface, PoseTwistAndBodiesContent) {
         std::lock_guard<std::mutex> l(mu);
         bodies = *m;
       });
-  ASSERT_TRUE(WaitFor([&] {
-    std::lock_guard<std::mutex> l(mu);
-    return pose && twist && bodies;
-  }, rbs_test::kStartupTimeout));
+  ASSERT_TRUE(WaitFor(
+      [&] {
+        std::lock_guard<std::mutex> l(mu);
+        return pose && twist && bodies;
+      },
+      rbs_test::kStartupTimeout));
   std::lock_guard<std::mutex> l(mu);
   EXPECT_EQ(pose->header.frame_id, "odom");
   EXPECT_EQ(twist->header.frame_id, "odom");
@@ -204,20 +208,22 @@ TEST(Interface, ClockPublishedFromSimulationTime) {
   std::mutex mu;
   std::vector<ros::Time> clock;
   std::vector<ros::Time> stamps;
-  auto sc = nh.subscribe<rosgraph_msgs::Clock>(
-      "/clock", 1000, [&](const rosgraph_msgs::Clock::ConstPtr& m) {
-        std::lock_guard<std::mutex> l(mu);
-        clock.push_back(m->clock);
-      });
+  auto sc = nh.subscribe<rosgraph_msgs::Clock>("/clock", 1000,
+                                               [&](const rosgraph_msgs::Clock::ConstPtr& m) {
+                                                 std::lock_guard<std::mutex> l(mu);
+                                                 clock.push_back(m->clock);
+                                               });
   auto sb = nh.subscribe<rigid_body_sim::BodyStateArray>(
       "/rigid_body_sim/bodies", 1000, [&](const rigid_body_sim::BodyStateArray::ConstPtr& m) {
         std::lock_guard<std::mutex> l(mu);
         stamps.push_back(m->header.stamp);
       });
-  ASSERT_TRUE(WaitFor([&] {
-    std::lock_guard<std::mutex> l(mu);
-    return clock.size() >= 20 && stamps.size() >= 20;
-  }, rbs_test::kStartupTimeout))
+  ASSERT_TRUE(WaitFor(
+      [&] {
+        std::lock_guard<std::mutex> l(mu);
+        return clock.size() >= 20 && stamps.size() >= 20;
+      },
+      rbs_test::kStartupTimeout))
       << "no /clock (publish_clock true) or no ~bodies";
   std::lock_guard<std::mutex> l(mu);
   for (std::size_t i = 1; i < clock.size(); ++i)
@@ -264,10 +270,12 @@ TEST(Interface, ParticlesMarkersShowEveryParticle) {
         std::lock_guard<std::mutex> l(mu);
         if (!m->markers.empty()) markers = *m;
       });
-  ASSERT_TRUE(WaitFor([&] {
-    std::lock_guard<std::mutex> l(mu);
-    return markers.has_value();
-  }, rbs_test::kStartupTimeout))
+  ASSERT_TRUE(WaitFor(
+      [&] {
+        std::lock_guard<std::mutex> l(mu);
+        return markers.has_value();
+      },
+      rbs_test::kStartupTimeout))
       << "no non-empty ~particles MarkerArray while subscribed";
   std::lock_guard<std::mutex> l(mu);
   // Candidate points: (frame, position) of single-shape markers and of the
@@ -320,10 +328,8 @@ TEST(Interface, ParticlesMarkersShowEveryParticle) {
     for (const auto& p : pts) {
       const bool world = p.frame == "odom" || p.frame == "/odom";
       const bool body = p.frame == "sim/" + q.body || p.frame == q.body;
-      if (world && std::hypot(p.x - q.wx, std::hypot(p.y - q.wy, p.z - q.wz)) < 1e-6)
-        found = true;
-      if (body && std::hypot(p.x - q.bx, std::hypot(p.y - q.by, p.z - q.bz)) < 1e-6)
-        found = true;
+      if (world && std::hypot(p.x - q.wx, std::hypot(p.y - q.wy, p.z - q.wz)) < 1e-6) found = true;
+      if (body && std::hypot(p.x - q.bx, std::hypot(p.y - q.by, p.z - q.bz)) < 1e-6) found = true;
     }
     EXPECT_TRUE(found) << "no marker at particle of " << q.body << " world (" << q.wx << ", "
                        << q.wy << ", " << q.wz << ")";

@@ -20,10 +20,10 @@
 #include <string>
 #include <vector>
 
-#include <Eigen/Geometry>
 #include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/Imu.h>
+#include <Eigen/Geometry>
 
 #include "rbs_fixture.h"
 #include "rigid_body_sim/core/imu_noise.h"
@@ -97,16 +97,19 @@ struct Outputs {
   // Waits once per process (later calls return the first result), so that a
   // node without these topics fails each test at once.
   ::testing::AssertionResult Connect() {
-    if (!connected) connected = WaitFor([&] {
-      for (const auto& entry : odom)
-        if (!entry.second.Connected() || !imu[entry.first].Connected() ||
-            !wrench[entry.first].Connected())
-          return false;
-      return true;
-    }, rbs_test::kStartupTimeout);
+    if (!connected)
+      connected = WaitFor(
+          [&] {
+            for (const auto& entry : odom)
+              if (!entry.second.Connected() || !imu[entry.first].Connected() ||
+                  !wrench[entry.first].Connected())
+                return false;
+            return true;
+          },
+          rbs_test::kStartupTimeout);
     return *connected ? ::testing::AssertionSuccess()
-                     : ::testing::AssertionFailure() << "the node never advertised every "
-                                                        "~<body>/odom, imu and applied_wrench";
+                      : ::testing::AssertionFailure() << "the node never advertised every "
+                                                         "~<body>/odom, imu and applied_wrench";
   }
   std::optional<bool> connected;
   ros::NodeHandle nh;
@@ -127,12 +130,12 @@ Eigen::Quaterniond ToEigen(const geometry_msgs::Quaternion& q) {
 }
 Eigen::Vector3d ToEigen(const geometry_msgs::Vector3& v) { return Eigen::Vector3d(v.x, v.y, v.z); }
 
-#define EXPECT_EIGEN_NEAR(msg, expected, tol)                          \
-  do {                                                                 \
-    const Eigen::Vector3d _e = (expected);                             \
-    EXPECT_NEAR((msg).x, _e.x(), (tol));                               \
-    EXPECT_NEAR((msg).y, _e.y(), (tol));                               \
-    EXPECT_NEAR((msg).z, _e.z(), (tol));                               \
+#define EXPECT_EIGEN_NEAR(msg, expected, tol) \
+  do {                                        \
+    const Eigen::Vector3d _e = (expected);    \
+    EXPECT_NEAR((msg).x, _e.x(), (tol));      \
+    EXPECT_NEAR((msg).y, _e.y(), (tol));      \
+    EXPECT_NEAR((msg).z, _e.z(), (tol));      \
   } while (0)
 
 // Pauses, resets, connects the exact node's outputs.
@@ -174,8 +177,8 @@ TEST(Outputs, OdometryOfARotatedSpinningBodyIsInBodyAxes) {
   // An isotropic body spinning about a fixed axis is stepped exactly up to
   // the round-off of the quaternion product.
   const double theta = 0.5 * M_PI + 2.0 * kDt;
-  EXPECT_EIGEN_NEAR(odom.twist.twist.linear, Eigen::Vector3d(std::cos(theta), -std::sin(theta), 0.0),
-                    kRoundOff);
+  EXPECT_EIGEN_NEAR(odom.twist.twist.linear,
+                    Eigen::Vector3d(std::cos(theta), -std::sin(theta), 0.0), kRoundOff);
   EXPECT_EIGEN_NEAR(odom.twist.twist.angular, Eigen::Vector3d(0.0, 0.0, 2.0), kRoundOff);
   // The same as the ~bodies twist turned into the axes of its pose.
   const Eigen::Matrix3d to_body = ToEigen(spinner->pose.orientation).toRotationMatrix().transpose();
@@ -272,7 +275,8 @@ struct HeldNoise {
   Eigen::Vector3d linear_acceleration_mps2;
 };
 HeldNoise NoiseOf(const sensor_msgs::Imu& imu) {
-  return {ToEigen(imu.angular_velocity), ToEigen(imu.linear_acceleration) - Eigen::Vector3d(0.0, kG, 0.0)};
+  return {ToEigen(imu.angular_velocity),
+          ToEigen(imu.linear_acceleration) - Eigen::Vector3d(0.0, kG, 0.0)};
 }
 
 const rigid_body_sim::core::ImuNoise kNoise = [] {
@@ -295,7 +299,8 @@ void ExpectNoiseOfStep(const sensor_msgs::Imu& imu, const Eigen::Quaterniond& or
   const Eigen::Quaterniond expected =
       rigid_body_sim::core::TurnedInBodyAxes(orientation, draw.orientation_rad);
   EXPECT_LT((expected.conjugate() * ToEigen(imu.orientation)).vec().norm(), 1e-15);
-  const double variance = kNoise.angular_velocity_stddev_radps * kNoise.angular_velocity_stddev_radps;
+  const double variance =
+      kNoise.angular_velocity_stddev_radps * kNoise.angular_velocity_stddev_radps;
   EXPECT_EQ(imu.angular_velocity_covariance[0], variance);
   EXPECT_EQ(imu.angular_velocity_covariance[4], variance);
   EXPECT_EQ(imu.angular_velocity_covariance[1], 0.0);
@@ -336,8 +341,8 @@ TEST(Outputs, NoisyImuIsKeyedByStepNotByPublication) {
   ASSERT_TRUE(sim.Step(5).success);
   early.Start(nh, sim.Name("held/imu"));
   late.Start(nh, sim.Name("held/imu"));
-  ASSERT_TRUE(WaitFor([&] { return early.Connected() && late.Connected(); },
-                      rbs_test::kStartupTimeout));
+  ASSERT_TRUE(
+      WaitFor([&] { return early.Connected() && late.Connected(); }, rbs_test::kStartupTimeout));
   rigid_body_sim::BodyStateArray bodies;
   ASSERT_TRUE(sim.StepAndGet(1, &bodies));
   sensor_msgs::Imu from_early, from_late;

@@ -55,7 +55,8 @@ TEST(Properties, DampingDecaysTheMomentaExponentially) {
   EXPECT_NEAR(l, l0 * std::exp(-2.0 * t), 1e-12 * l0);
   const double cosine = (before.angular_momentum.x * after.angular_momentum.x +
                          before.angular_momentum.y * after.angular_momentum.y +
-                         before.angular_momentum.z * after.angular_momentum.z) / (l0 * l);
+                         before.angular_momentum.z * after.angular_momentum.z) /
+                        (l0 * l);
   EXPECT_NEAR(cosine, 1.0, 1e-14);
 }
 

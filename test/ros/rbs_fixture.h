@@ -48,8 +48,7 @@ constexpr double kSettle = 0.25;
 // ros::Time stamp (integer ns) within a few ulps only.
 constexpr double kStampMatch = 1e-6;
 
-inline bool WaitFor(const std::function<bool()>& pred, double timeout_s,
-                    double poll_s = 0.005) {
+inline bool WaitFor(const std::function<bool()>& pred, double timeout_s, double poll_s = 0.005) {
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(timeout_s);
   while (ros::ok()) {
     if (pred()) return true;
@@ -99,8 +98,8 @@ inline geometry_msgs::Vector3 V3(double x, double y, double z) {
 }
 
 inline rigid_body_sim::ParticleWrench MakeWrench(const std::string& body, uint32_t particle,
-                                                 double fx, double fy, double fz,
-                                                 double tx = 0, double ty = 0, double tz = 0,
+                                                 double fx, double fy, double fz, double tx = 0,
+                                                 double ty = 0, double tz = 0,
                                                  const std::string& frame = "",
                                                  ros::Time stamp = ros::Time(0)) {
   rigid_body_sim::ParticleWrench w;
@@ -235,10 +234,12 @@ class Sim {
     bodies.Start(nh_, Name("bodies"));
     wrench_pub_ = nh_.advertise<rigid_body_sim::ParticleWrench>(Name("particle_wrench"), 100);
     array_pub_ = nh_.advertise<rigid_body_sim::ParticleWrenchArray>(Name("particle_wrenches"), 100);
-    if (!WaitFor([&] {
-          return wrench_pub_.getNumSubscribers() > 0 && array_pub_.getNumSubscribers() > 0 &&
-                 bodies.NumPublishers() > 0;
-        }, timeout_s))
+    if (!WaitFor(
+            [&] {
+              return wrench_pub_.getNumSubscribers() > 0 && array_pub_.getNumSubscribers() > 0 &&
+                     bodies.NumPublishers() > 0;
+            },
+            timeout_s))
       return ::testing::AssertionFailure()
              << "node never connected to " << Name("particle_wrench(es)") << " / "
              << Name("bodies");
@@ -276,8 +277,7 @@ class Sim {
     if (sim_time) *sim_time = r.sim_time;
     if (!bodies.WaitStamp(r.sim_time, kMessageTimeout, out))
       return ::testing::AssertionFailure()
-             << "no ~bodies message stamped " << std::fixed << r.sim_time << " after ~step "
-             << n;
+             << "no ~bodies message stamped " << std::fixed << r.sim_time << " after ~step " << n;
     return ::testing::AssertionSuccess();
   }
   // Connects once per process (later calls return the first result).
@@ -339,17 +339,17 @@ inline const rigid_body_sim::BodyState* FindBody(const rigid_body_sim::BodyState
 
 // gtest main for every node test: a ROS node with an async spinner so the
 // subscribers fill while the test thread waits and calls services.
-#define RBS_TEST_MAIN(node_name)                           \
-  int main(int argc, char** argv) {                        \
-    ::testing::InitGoogleTest(&argc, argv);                \
-    ros::init(argc, argv, node_name);                      \
-    ros::NodeHandle nh;                                    \
-    ros::AsyncSpinner spinner(2);                          \
-    spinner.start();                                       \
-    const int r = RUN_ALL_TESTS();                         \
-    spinner.stop();                                        \
-    ros::shutdown();                                       \
-    return r;                                              \
+#define RBS_TEST_MAIN(node_name)            \
+  int main(int argc, char** argv) {         \
+    ::testing::InitGoogleTest(&argc, argv); \
+    ros::init(argc, argv, node_name);       \
+    ros::NodeHandle nh;                     \
+    ros::AsyncSpinner spinner(2);           \
+    spinner.start();                        \
+    const int r = RUN_ALL_TESTS();          \
+    spinner.stop();                         \
+    ros::shutdown();                        \
+    return r;                               \
   }
 
 }  // namespace rbs_test

@@ -79,7 +79,8 @@ double DoubleParam(const std::string& key) {
 ::testing::AssertionResult Connect() {
   auto& sim = TheSim();
   if (auto r = sim.EnsureConnected(); !r) return r;
-  if (!ros::service::waitForService(sim.Name("set_parameters"), ros::Duration(rbs_test::kStartupTimeout)))
+  if (!ros::service::waitForService(sim.Name("set_parameters"),
+                                    ros::Duration(rbs_test::kStartupTimeout)))
     return ::testing::AssertionFailure() << "no " << sim.Name("set_parameters");
   return ::testing::AssertionSuccess();
 }
@@ -94,8 +95,12 @@ TEST(Reconfigure, TheServerStartsFromTheNodesParameters) {
         std::lock_guard<std::mutex> l(mu);
         if (!first) first = *m;
       });
-  ASSERT_TRUE(WaitFor([&] { std::lock_guard<std::mutex> l(mu); return first.has_value(); },
-                      rbs_test::kMessageTimeout))
+  ASSERT_TRUE(WaitFor(
+      [&] {
+        std::lock_guard<std::mutex> l(mu);
+        return first.has_value();
+      },
+      rbs_test::kMessageTimeout))
       << "nothing latched on ~parameter_updates";
   std::lock_guard<std::mutex> l(mu);
   const Values values = FromMsg(*first);
@@ -138,7 +143,8 @@ TEST(Reconfigure, GravitySetWhilePausedGivesTheExactFallOfTheNewG) {
   const double g[3] = {1.0, 0.0, -9.81};
   const double x0[3] = {b0->pose.position.x, b0->pose.position.y, b0->pose.position.z};
   const double v0[3] = {b0->twist.linear.x, b0->twist.linear.y, b0->twist.linear.z};
-  EXPECT_VEC3_NEAR(b1->twist.linear, v0[0] + g[0] * t, v0[1] + g[1] * t, v0[2] + g[2] * t, kRoundOff);
+  EXPECT_VEC3_NEAR(b1->twist.linear, v0[0] + g[0] * t, v0[1] + g[1] * t, v0[2] + g[2] * t,
+                   kRoundOff);
   EXPECT_NEAR(b1->pose.position.x, x0[0] + v0[0] * t + 0.5 * g[0] * t * t, kRoundOff);
   EXPECT_NEAR(b1->pose.position.y, x0[1] + v0[1] * t + 0.5 * g[1] * t * t, kRoundOff);
   EXPECT_NEAR(b1->pose.position.z, x0[2] + v0[2] * t + 0.5 * g[2] * t * t, kRoundOff);
@@ -191,9 +197,10 @@ TEST(Reconfigure, AnIntegratorSwitchIsAppliedFromTheNextStep) {
   ASSERT_TRUE(b0 && b1);
   const double t = kSteps * kDt;
   const double g_z = -9.81;
-  EXPECT_NEAR(b1->pose.position.z,
-              b0->pose.position.z + b0->twist.linear.z * t + 0.5 * g_z * t * t - 0.5 * g_z * kDt * t,
-              kRoundOff);
+  EXPECT_NEAR(
+      b1->pose.position.z,
+      b0->pose.position.z + b0->twist.linear.z * t + 0.5 * g_z * t * t - 0.5 * g_z * kDt * t,
+      kRoundOff);
   const auto unknown = Reconfigure({}, {{"integrator", "leapfrog"}});
   ASSERT_TRUE(unknown.has_value());
   EXPECT_EQ(unknown->strs.at("integrator"), "euler");
@@ -205,7 +212,7 @@ TEST(Reconfigure, ANewWrenchTimeoutAppliesToTheWrenchesAlreadyHeld) {
   ASSERT_TRUE(sim.SetPaused(true));
   rigid_body_sim::BodyStateArray s0, s1;
   ASSERT_TRUE(sim.StepAndGet(1, &s0));
-  sim.Publish(MakeWrench("ball", 0, 0.0, 4.0, 0.0));  // held from the next step, 0.5 s
+  sim.Publish(MakeWrench("ball", 0, 0.0, 4.0, 0.0));             // held from the next step, 0.5 s
   const auto applied = Reconfigure({{"wrench_timeout", 0.01}});  // 5 steps
   ASSERT_TRUE(applied.has_value());
   EXPECT_EQ(applied->doubles.at("wrench_timeout"), 0.01);
@@ -229,8 +236,8 @@ TEST(Reconfigure, StampsStayOnTheLatticeWhilePublishRateAndPacingChange) {
   const std::size_t before_resume = sim.bodies.Count();
   ASSERT_TRUE(sim.SetPaused(false));
   rbs_test::SleepWall(0.5);
-  const auto applied = Reconfigure({{"publish_rate", 125.0}, {"real_time_factor", 1.0}}, {},
-                                   {{"publish_tf", true}});
+  const auto applied =
+      Reconfigure({{"publish_rate", 125.0}, {"real_time_factor", 1.0}}, {}, {{"publish_tf", true}});
   ASSERT_TRUE(applied.has_value());
   EXPECT_EQ(applied->doubles.at("publish_rate"), 125.0);  // every 4 steps
   EXPECT_EQ(applied->doubles.at("real_time_factor"), 1.0);

@@ -70,11 +70,13 @@ TEST(RuntimeConfig, ABadValueIsRefusedNamingItsKey) {
             "real_time_factor must be finite and >= 0, got nan");
   EXPECT_EQ(why([](NodeSettings* s) { s->publish_rate_hz = 1000.0; }),
             "publish_rate must not exceed ~rate (500), got 1000");
-  EXPECT_EQ(why([](NodeSettings* s) { s->publish_rate_hz = 0.0; }), "publish_rate must be > 0, got 0");
+  EXPECT_EQ(why([](NodeSettings* s) { s->publish_rate_hz = 0.0; }),
+            "publish_rate must be > 0, got 0");
   EXPECT_EQ(why([](NodeSettings* s) { s->publish_rate_hz = -10.0; }),
             "publish_rate must be > 0, got -10");
-  EXPECT_EQ(why([](NodeSettings* s) { s->gravity_mps2.y() = std::numeric_limits<double>::infinity(); }),
-            "gravity_y must be finite, got inf");
+  EXPECT_EQ(
+      why([](NodeSettings* s) { s->gravity_mps2.y() = std::numeric_limits<double>::infinity(); }),
+      "gravity_y must be finite, got inf");
   EXPECT_EQ(why([](NodeSettings* s) { s->wrench_timeout_s = -1.0; }),
             "wrench_timeout must be finite and >= 0, got -1");
   EXPECT_EQ(why([](NodeSettings* s) { s->integrator = "leapfrog"; }),
@@ -102,7 +104,8 @@ TEST(RuntimeConfig, TheCfgBoundsNeverClampABadValueIntoAValidOne) {
 std::vector<std::string> EnumValues(const std::string& edit_method) {
   std::vector<std::string> values;
   const std::regex value("'value': '([^']*)'");
-  for (std::sregex_iterator it(edit_method.begin(), edit_method.end(), value), end; it != end; ++it) {
+  for (std::sregex_iterator it(edit_method.begin(), edit_method.end(), value), end; it != end;
+       ++it) {
     values.push_back((*it)[1]);
   }
   return values;

@@ -203,7 +203,7 @@ TEST(SceneFrames, SiteNamesAreUniqueAmongBodiesAndSites) {
 
   // ~spawn_body: the entry is read alone, the world refuses the clash.
   SceneBodies scene = Parse("[" + Puck("a", ", sites: [{name: tip}]") + "]");
-  core::World world(scene.models, scene.initial_states, core::WorldOptions{}, scene.properties,
+  core::World world(scene.models, scene.initial_states, core::WorldDef{}, scene.properties,
                     scene.frames);
   SceneBodies spawned;
   ParseBodyEntry(XmlRpcFromYaml(Puck("b", ", sites: [{name: tip}]")), world.size(), &spawned);

@@ -322,7 +322,7 @@ TEST(SceneParams, NamesAndStatesAreCheckedByTheWorldBuiltFromTheScene) {
   SceneBodies scene_bodies;
   ParseBodies(List({Dumbbell("twin"), Dumbbell("twin")}), &scene_bodies);
   try {
-    core::World(scene_bodies.models, scene_bodies.initial_states, core::WorldOptions{},
+    core::World(scene_bodies.models, scene_bodies.initial_states, core::WorldDef{},
                 scene_bodies.properties);
     FAIL() << "duplicate names accepted";
   } catch (const std::invalid_argument& error) {

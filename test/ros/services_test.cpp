@@ -167,8 +167,7 @@ TEST(Services, SetBodyState) {
   const auto* c = FindBody(s, "cube");
   ASSERT_NE(c, nullptr);
   // Free flight for one step from the set state.
-  EXPECT_VEC3_NEAR(c->pose.position, 1.0 + 0.1 * kDt, 2.0 + 0.2 * kDt, 3.0 + 0.3 * kDt,
-                   kRoundOff);
+  EXPECT_VEC3_NEAR(c->pose.position, 1.0 + 0.1 * kDt, 2.0 + 0.2 * kDt, 3.0 + 0.3 * kDt, kRoundOff);
   EXPECT_VEC3_NEAR(c->twist.linear, 0.1, 0.2, 0.3, kRoundOff);
   EXPECT_VEC3_NEAR(c->linear_momentum, 0.4, 0.8, 1.2, kRoundOff);
   // Isotropic: L = I ω stays, ω stays.
@@ -177,8 +176,8 @@ TEST(Services, SetBodyState) {
   // Orientation: exp(ω dt) ⊗ q. A splitting scheme rotates an isotropic body
   // exactly up to O((|ω| dt)³) ≈ 5e-11 rad; 1e-9 rad allows for that.
   const double w = std::sqrt(0.09 + 0.04 + 0.01), a = 0.5 * w * kDt;
-  const double rx = std::sin(a) * 0.3 / w, ry = std::sin(a) * -0.2 / w,
-               rz = std::sin(a) * 0.1 / w, rw = std::cos(a);
+  const double rx = std::sin(a) * 0.3 / w, ry = std::sin(a) * -0.2 / w, rz = std::sin(a) * 0.1 / w,
+               rw = std::cos(a);
   const double qx = pose.orientation.x, qw = pose.orientation.w;  // qy = qz = 0
   // (r ⊗ q): w = rw qw − r·q ; v = rw q + qw r + r × q, q = (qx, 0, 0)
   const double ew = rw * qw - rx * qx;

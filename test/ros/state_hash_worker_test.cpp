@@ -11,7 +11,8 @@
 namespace rigid_body_sim {
 namespace {
 
-std::optional<StateHashWorker::Result> WaitFor(const StateHashWorker& worker, const ros::Time& stamp) {
+std::optional<StateHashWorker::Result> WaitFor(const StateHashWorker& worker,
+                                               const ros::Time& stamp) {
   for (int i = 0; i < 2000; ++i) {
     const std::optional<StateHashWorker::Result> latest = worker.latest();
     if (latest && latest->stamp == stamp) return latest;

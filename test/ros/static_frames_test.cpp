@@ -22,7 +22,7 @@ TEST(StaticFrames, ASiteIsPlacedFromItsBodysFrameOrigin) {
   reference.tf_frame = "base_link";
   reference.sites = {{"mount", {0.1, 0.2, 0.3}, identity}};
   const core::World world({Dumbbell("rod"), Dumbbell("robot"), Dumbbell("bare")},
-                          std::vector<core::BodyState>(3), core::WorldOptions{}, {},
+                          std::vector<core::BodyState>(3), core::WorldDef{}, {},
                           {com, reference, core::BodyFrames{}});
 
   const std::vector<geometry_msgs::TransformStamped> rod =

@@ -64,11 +64,13 @@ class Timing : public ::testing::Test {
     subs->push_back(nh.subscribe("/rigid_body_sim/box/twist", 10000, &Recorder::Twist, rec));
     subs->push_back(nh.subscribe("/tf", 10000, &Recorder::Tf, rec));
     // Wait until all four are connected, then record kWindow seconds.
-    ok = WaitFor([&] {
-      for (const auto& s : *subs)
-        if (s.getNumPublishers() == 0) return false;
-      return true;
-    }, rbs_test::kStartupTimeout);
+    ok = WaitFor(
+        [&] {
+          for (const auto& s : *subs)
+            if (s.getNumPublishers() == 0) return false;
+          return true;
+        },
+        rbs_test::kStartupTimeout);
     if (!ok) return;
     rbs_test::SleepWall(0.5);  // let the connections settle
     {
@@ -107,7 +109,9 @@ Recorder* Timing::rec = nullptr;
 std::vector<ros::Subscriber>* Timing::subs = nullptr;
 bool Timing::ok = false;
 
-TEST_F(Timing, Connected) { ASSERT_TRUE(ok) << "not all of ~bodies, ~box/pose, ~box/twist, /tf came up"; }
+TEST_F(Timing, Connected) {
+  ASSERT_TRUE(ok) << "not all of ~bodies, ~box/pose, ~box/twist, /tf came up";
+}
 
 TEST_F(Timing, BodiesStampsOnGrid) { ExpectTimeline(rec->bodies, "~bodies"); }
 TEST_F(Timing, PoseStampsOnGrid) { ExpectTimeline(rec->pose, "~box/pose"); }

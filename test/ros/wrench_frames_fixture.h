@@ -14,7 +14,7 @@ inline const core::World& BoxAndRod() {
   static const core::World world(
       {core::BodyModel("box", core::MakeBox(1.0, {0.2, 0.3, 0.4}, 2)),
        core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0}}, {1.0, {0, 0, 0.5}}})},
-      std::vector<core::BodyState>(2), core::WorldOptions{});
+      std::vector<core::BodyState>(2), core::WorldDef{});
   return world;
 }
 

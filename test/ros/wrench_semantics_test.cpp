@@ -97,10 +97,10 @@ TEST(WrenchSemantics, ArrayEntriesActTogetherLaterEntryReplacesInvalidRejectedAl
   rigid_body_sim::ParticleWrenchArray a;
   a.wrenches.push_back(MakeWrench("plate", 0, 1.0, 0.0, 0.0));
   a.wrenches.push_back(MakeWrench("plate", 1, 2.0, 0.0, 0.0));
-  a.wrenches.push_back(MakeWrench("plate", 0, 0.0, 0.0, 3.0));  // replaces entry 0
+  a.wrenches.push_back(MakeWrench("plate", 0, 0.0, 0.0, 3.0));           // replaces entry 0
   a.wrenches.push_back(MakeWrench("no_such_body", 0, 100.0, 0.0, 0.0));  // rejected alone
   a.wrenches.push_back(MakeWrench("plate", 99, 100.0, 0.0, 0.0));        // rejected alone
-  a.wrenches.push_back(MakeWrench("plate", 3, 0.0, -1.0, 0.0));  // after the invalid ones
+  a.wrenches.push_back(MakeWrench("plate", 3, 0.0, -1.0, 0.0));          // after the invalid ones
   sim.Publish(a);
   rigid_body_sim::BodyStateArray s;
   ASSERT_TRUE(sim.StepAndGet(300, &s));

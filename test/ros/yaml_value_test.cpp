@@ -97,7 +97,8 @@ TEST(YamlValue, ARepeatedKeyKeepsItsLastValueAndAMergeKeyIsAPlainKey) {
   EXPECT_EQ(value["a"].size(), 2);
   SceneBodies bodies;
   try {
-    ParseBodyEntry(XmlRpcFromYaml("{name: &n x, shape: sphere, mass: 1, radius: 1, <<: *n}"), 0, &bodies);
+    ParseBodyEntry(XmlRpcFromYaml("{name: &n x, shape: sphere, mass: 1, radius: 1, <<: *n}"), 0,
+                   &bodies);
     FAIL() << "a merge key was accepted";
   } catch (const SceneError& error) {
     EXPECT_NE(std::string(error.what()).find("unknown key"), std::string::npos) << error.what();
@@ -107,7 +108,8 @@ TEST(YamlValue, ARepeatedKeyKeepsItsLastValueAndAMergeKeyIsAPlainKey) {
 TEST(YamlValue, HugeNumbersAreNoNumbers) {
   SceneBodies bodies;
   for (const char* mass : {"1e999999", "-1e400", "99999999999999999999999999e99999"}) {
-    const std::string entry = std::string("{name: b, particles: [{mass: ") + mass + ", position: [0, 0, 0]}]}";
+    const std::string entry =
+        std::string("{name: b, particles: [{mass: ") + mass + ", position: [0, 0, 0]}]}";
     EXPECT_THROW(ParseBodyEntry(XmlRpcFromYaml(entry), 0, &bodies), SceneError) << mass;
   }
 }
@@ -122,7 +124,8 @@ TEST(YamlValue, ABillionLaughsIsRefusedBeforeItExpands) {
   }
   ASSERT_LT(text.size(), 1000u);
   const std::size_t heap_before = HeapInUse();
-  EXPECT_NE(MessageOf(text).find("expands to more than 48 MiB"), std::string::npos) << MessageOf(text);
+  EXPECT_NE(MessageOf(text).find("expands to more than 48 MiB"), std::string::npos)
+      << MessageOf(text);
   EXPECT_LT(HeapInUse(), heap_before + (1u << 20));
 }
 
@@ -132,11 +135,13 @@ TEST(YamlValue, ALongStringAliasedManyTimesIsRefused) {
 }
 
 TEST(YamlValue, NestingAndLengthPastTheLimitsAreRefused) {
-  const std::string deep = std::string(kMaxYamlDepth + 1, '[') + std::string(kMaxYamlDepth + 1, ']');
+  const std::string deep =
+      std::string(kMaxYamlDepth + 1, '[') + std::string(kMaxYamlDepth + 1, ']');
   EXPECT_EQ(MessageOf(deep), "YAML nested deeper than 16 (the limit for a service text)");
   const std::string deepest = std::string(kMaxYamlDepth, '[') + std::string(kMaxYamlDepth, ']');
   EXPECT_EQ(MessageOf(deepest), "accepted");
-  EXPECT_NE(MessageOf(std::string(100000, '[') + std::string(100000, ']')).find("nested deeper"), std::string::npos);
+  EXPECT_NE(MessageOf(std::string(100000, '[') + std::string(100000, ']')).find("nested deeper"),
+            std::string::npos);
   const std::string too_long(kMaxYamlTextBytes + 1, ' ');
   EXPECT_NE(MessageOf(too_long).find("more than 16 MiB"), std::string::npos);
   EXPECT_NE(MessageOf("{[a]: 1}").find("map keys must be plain scalars"), std::string::npos);
@@ -151,9 +156,10 @@ TEST(YamlValue, WhatIsBuiltStaysWithinTheBudget) {
     std::size_t counted_bytes;  // per item, as the budget counts it
   };
   constexpr std::size_t kItems = 50000;
-  for (const Kind& kind : {Kind{"{}", 16 + 64}, Kind{"[]", 16 + 64}, Kind{"s", 16 + 64 + 1},
-                           Kind{"true", 16 + 64 + 4}, Kind{"1", 16}, Kind{"2.5e-3", 16},
-                           Kind{"{a: 1}", 16 + 64 + 80 + 1 + 16}, Kind{"[1, x]", 16 + 64 + 16 + 81}}) {
+  for (const Kind& kind :
+       {Kind{"{}", 16 + 64}, Kind{"[]", 16 + 64}, Kind{"s", 16 + 64 + 1}, Kind{"true", 16 + 64 + 4},
+        Kind{"1", 16}, Kind{"2.5e-3", 16}, Kind{"{a: 1}", 16 + 64 + 80 + 1 + 16},
+        Kind{"[1, x]", 16 + 64 + 16 + 81}}) {
     const std::string text = FlowSequence(kind.item, kItems);
     XmlRpcFromYaml(text);  // the allocator's caches as they will be: only the values count
     const std::size_t heap_before = HeapInUse();
@@ -169,7 +175,8 @@ TEST(YamlValue, WhatIsBuiltStaysWithinTheBudget) {
 TEST(YamlValue, TheLargestBodyFits) {
   const std::string text =
       "{name: big, particles: " +
-      FlowSequence("{mass: 0.001, position: [0.123456789, -0.5, 12.25]}", kMaxParticlesPerBody) + "}";
+      FlowSequence("{mass: 0.001, position: [0.123456789, -0.5, 12.25]}", kMaxParticlesPerBody) +
+      "}";
   SceneBodies bodies;
   ParseBodyEntry(XmlRpcFromYaml(text), 0, &bodies);
   ASSERT_EQ(bodies.models.size(), 1u);

@@ -14,7 +14,7 @@ enum class BodyFault {
   kNone,
   kNonFinite,        // a NaN or an infinity in the state
   kFasterThanLight,  // |v| above c = 299792458 m/s: the forces are not physical
-  kSpinAliased,      // the step needs more substeps than WorldOptions::max_substeps
+  kSpinAliased,      // the step needs more substeps than WorldDef::max_substeps
 };
 const char* ToString(BodyFault fault);
 

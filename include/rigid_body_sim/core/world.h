@@ -23,7 +23,7 @@
 #include "rigid_body_sim/core/step_policy.h"
 #include "rigid_body_sim/core/step_record.h"
 #include "rigid_body_sim/core/thread_team.h"
-#include "rigid_body_sim/core/world_def.h"  // WorldDef, also spelt WorldOptions
+#include "rigid_body_sim/core/world_def.h"
 #include "rigid_body_sim/core/wrench_table.h"
 
 namespace rigid_body_sim::core {
@@ -49,7 +49,7 @@ class World {
   // ("bodies[i] (name 'n'): ..."). Empty `properties` or `frames` gives every
   // body the defaults.
   World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
-        const WorldOptions& options, std::vector<BodyProperties> properties = {},
+        const WorldDef& options, std::vector<BodyProperties> properties = {},
         std::vector<BodyFrames> frames = {});
 
   // Bodies are read by index (scene order; an index moves down when a body
@@ -73,7 +73,7 @@ class World {
   const std::vector<BodyModel>& models() const { return bodies_.hot().models; }
   const std::vector<BodyState>& states() const { return bodies_.hot().states; }
   const Integrator& integrator() const { return *integrator_; }
-  const WorldOptions& options() const { return options_; }
+  const WorldDef& options() const { return options_; }
 
   // t_n = t_0 + n·dt, from the step count so it never drifts.
   double time() const {
@@ -243,7 +243,7 @@ class World {
 
   BodyStore bodies_;
   std::vector<BodyListener*> listeners_;
-  WorldOptions options_;
+  WorldDef options_;
   std::unique_ptr<Integrator> integrator_;
   WrenchTable wrenches_;
   std::vector<Share> shares_;  // one per thread, indexed as ThreadTeam members

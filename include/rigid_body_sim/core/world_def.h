@@ -29,10 +29,6 @@ struct WorldDef {
   std::size_t threads = 1;
 };
 
-// The name WorldDef had before; the World's signatures and their callers
-// still spell it.
-using WorldOptions = WorldDef;
-
 // The keys of the runtime configuration (doc/node.md, "Runtime
 // configuration"): the World takes the first three between steps
 // (World::SetIntegrator, SetGravity, SetWrenchTimeout), the node's pacing
