@@ -381,18 +381,19 @@ struct RandomRun {
 };
 
 World RandomWorld(const std::string& name) {
-  std::vector<BodyModel> models = {test::Diag123Body(), BoxBody(),           test::RodBody(),
-                                   test::PointBody(),   test::NearRodBody(), test::NeedleBody()};
-  std::vector<BodyState> states(models.size());
+  const std::vector<BodyModel> models = {test::Diag123Body(), BoxBody(),
+                                         test::RodBody(),     test::PointBody(),
+                                         test::NearRodBody(), test::NeedleBody()};
+  std::vector<BodyDef> defs;
   for (std::size_t i = 0; i < models.size(); ++i) {
-    states[i] = StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), test::kTilt, Vector3d(0, 0.1, 0),
-                               Vector3d(0.3, -1.0, 2.0));
+    defs.emplace_back(models[i], StateFromTwist(models[i], Vector3d(2.0 * i, 0, 0), test::kTilt,
+                                                Vector3d(0, 0.1, 0), Vector3d(0.3, -1.0, 2.0)));
   }
   WorldDef options;
   options.integrator = name;
   options.dt_s = kDt;
   options.gravity = {0, 0, -9.81};
-  return World(std::move(models), std::move(states), options);
+  return World(options, std::move(defs));
 }
 
 // The World substeps a body whose step leaves the scheme's accurate range and

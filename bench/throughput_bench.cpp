@@ -35,18 +35,18 @@ BodyModel MakeBody(const std::string& name, Body body) {
 World MakeWorld(const std::string& integrator, int bodies, bool forced,
                 Motion motion = Motion::kTumbling, Body body = Body::kBox,
                 std::size_t threads = 1) {
-  std::vector<BodyModel> models;
-  std::vector<BodyState> states(bodies);
-  models.reserve(bodies);
+  std::vector<BodyDef> defs;
+  defs.reserve(bodies);
   for (int i = 0; i < bodies; ++i) {
-    models.emplace_back(MakeBody("body" + std::to_string(i), body));
-    states[i].position = {0.01 * i, 0.0, 0.0};
-    if (motion == Motion::kTumbling) states[i].angular_momentum = {0.001, 0.02, 0.001};
+    BodyState state;
+    state.position = {0.01 * i, 0.0, 0.0};
+    if (motion == Motion::kTumbling) state.angular_momentum = {0.001, 0.02, 0.001};
+    defs.emplace_back(MakeBody("body" + std::to_string(i), body), state);
   }
   WorldDef options;
   options.integrator = integrator;
   options.threads = threads;
-  World world(std::move(models), std::move(states), options);
+  World world(options, std::move(defs));
   if (forced) {
     for (int i = 0; i < bodies; ++i) {
       ParticleWrench push;
@@ -105,18 +105,18 @@ void BM_WorldStep(benchmark::State& state, const std::string& integrator, bool f
 // Against BM_WorldStep/<scheme>/free of the same run.
 World MakeLargeStepWorld(const std::string& integrator, int bodies,
                          const Eigen::Vector3d& box_size_m) {
-  std::vector<BodyModel> models;
-  std::vector<BodyState> states(bodies);
-  models.reserve(bodies);
+  std::vector<BodyDef> defs;
+  defs.reserve(bodies);
   for (int i = 0; i < bodies; ++i) {
-    models.emplace_back("body" + std::to_string(i), MakeBox(1.0, box_size_m, 2));
-    states[i].position = {0.01 * i, 0.0, 0.0};
-    states[i].angular_momentum = {0.05, 0.02, 0.1};
+    BodyState state;
+    state.position = {0.01 * i, 0.0, 0.0};
+    state.angular_momentum = {0.05, 0.02, 0.1};
+    defs.emplace_back(BodyModel("body" + std::to_string(i), MakeBox(1.0, box_size_m, 2)), state);
   }
   WorldDef options;
   options.integrator = integrator;
   options.dt_s = 0.1;
-  return World(std::move(models), std::move(states), options);
+  return World(options, std::move(defs));
 }
 
 void BM_WorldStepLargeSteps(benchmark::State& state, const std::string& integrator) {
@@ -214,16 +214,17 @@ enum class LoadKind { kWorldForce, kBodyForce, kGravity };
 
 void BM_WorldStepLoaded(benchmark::State& state, LoadKind kind) {
   const int bodies = static_cast<int>(state.range(0));
-  std::vector<BodyModel> models;
-  std::vector<BodyState> states(bodies);
+  std::vector<BodyDef> defs;
   for (int i = 0; i < bodies; ++i) {
-    models.emplace_back("body" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2));
-    states[i].position = {0.01 * i, 0.0, 0.0};
-    states[i].angular_momentum = {0.001, 0.02, 0.001};
+    BodyState state;
+    state.position = {0.01 * i, 0.0, 0.0};
+    state.angular_momentum = {0.001, 0.02, 0.001};
+    defs.emplace_back(BodyModel("body" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2)),
+                      state);
   }
   WorldDef options;
   if (kind == LoadKind::kGravity) options.gravity = {0.0, 0.0, -9.81};
-  World world(std::move(models), std::move(states), options);
+  World world(options, std::move(defs));
   if (kind != LoadKind::kGravity) {
     for (int i = 0; i < bodies; ++i) {
       ParticleWrench push;
@@ -299,14 +300,15 @@ BENCHMARK(BM_StateHashFnv)->Arg(10000);
 // takes (nearly) max_substeps substeps. Time per World::Step.
 void BM_WorstStepAtMaxSubsteps(benchmark::State& state) {
   const int bodies = static_cast<int>(state.range(0));
-  std::vector<BodyModel> models;
-  std::vector<BodyState> states(bodies + 1);
+  std::vector<BodyDef> defs;
   for (int i = 0; i <= bodies; ++i) {
-    models.emplace_back("body" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2));
-    states[i].position = {0.01 * i, 0.0, 0.0};
-    states[i].angular_momentum = {0.001, 0.02, 0.001};
+    BodyState state;
+    state.position = {0.01 * i, 0.0, 0.0};
+    state.angular_momentum = {0.001, 0.02, 0.001};
+    defs.emplace_back(BodyModel("body" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2)),
+                      state);
   }
-  World world(models, states, WorldDef{});
+  World world(WorldDef{}, std::move(defs));
   ParticleWrench push;
   push.body = world.id(bodies);
   push.force = {0.1, -0.2, 0.05};

@@ -78,13 +78,14 @@ long StepCount(const Scene& scene, double dt) { return std::lround(scene.duratio
 bool RunsInWorld(const Scene& scene) { return scene.forces.empty(); }
 
 World MakeSceneWorld(const Scene& scene, const std::string& integrator, double dt, int bodies) {
-  std::vector<BodyModel> models;
-  for (int i = 0; i < bodies; ++i)
-    models.emplace_back(scene.name + std::to_string(i), scene.particles);
+  std::vector<BodyDef> defs;
+  for (int i = 0; i < bodies; ++i) {
+    defs.emplace_back(BodyModel(scene.name + std::to_string(i), scene.particles), scene.initial);
+  }
   WorldDef options;
   options.integrator = integrator;
   options.dt_s = dt;
-  World world(std::move(models), std::vector<BodyState>(bodies, scene.initial), options);
+  World world(options, std::move(defs));
   if (!scene.constant_couple.isZero()) {
     for (int i = 0; i < bodies; ++i) {
       ParticleWrench couple;

@@ -220,9 +220,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
 
-  rigid_body_sim::SceneBodies scene_bodies;
+  std::vector<rigid_body_sim::SceneBody> scene_bodies;
   try {
-    rigid_body_sim::ParseBodies(bodies, &scene_bodies, NoParameters);
+    scene_bodies = rigid_body_sim::ParseBodies(bodies, NoParameters);
   } catch (const rigid_body_sim::SceneError& error) {
     if (Verbose()) std::fprintf(stderr, "SceneError: %s\n", error.what());
     return 0;
@@ -230,26 +230,23 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (Verbose()) std::fprintf(stderr, "std::exception: %s\n", error.what());
     return 0;
   }
-  const std::vector<rigid_body_sim::core::BodyModel>& models = scene_bodies.models;
-  std::vector<rigid_body_sim::core::BodyState> states = scene_bodies.initial_states;
-  if (Verbose()) std::fprintf(stderr, "parsed %zu bodies\n", models.size());
+  if (Verbose()) std::fprintf(stderr, "parsed %zu bodies\n", scene_bodies.size());
   // XmlRpc::XmlRpcException or anything else escapes: libFuzzer reports it.
 
-  if (models.size() != static_cast<std::size_t>(bodies.size()) || states.size() != models.size() ||
-      scene_bodies.properties.size() != models.size()) {
-    Fail("one model, state and set of properties per entry", 0);
+  if (scene_bodies.size() != static_cast<std::size_t>(bodies.size())) {
+    Fail("one body per entry", 0);
   }
   // The node's scene path ends in the World, which checks names and states.
   std::optional<rigid_body_sim::core::World> world;
   try {
-    world.emplace(models, states, rigid_body_sim::core::WorldDef{}, scene_bodies.properties);
+    world.emplace(rigid_body_sim::core::WorldDef{}, rigid_body_sim::CoreDefs(scene_bodies));
   } catch (const std::invalid_argument& error) {
     if (Verbose()) std::fprintf(stderr, "World: %s\n", error.what());
     return 0;
   }
-  states = world->states();
-  for (std::size_t i = 0; i < models.size(); ++i) {
-    const auto& m = models[i];
+  const std::vector<rigid_body_sim::core::BodyState>& states = world->states();
+  for (std::size_t i = 0; i < world->size(); ++i) {
+    const auto& m = world->model(i);
     if (!(std::isfinite(m.mass()) && m.mass() > 0.0)) Fail("finite positive total mass", i);
     if (!m.inertia().allFinite() || !m.inverse_inertia().allFinite()) Fail("finite inertia", i);
     if (!Finite(states[i])) Fail("finite initial state", i);

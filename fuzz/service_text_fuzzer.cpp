@@ -19,6 +19,7 @@
 #include <cstdlib>
 #include <exception>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -63,32 +64,28 @@ bool NoParameters(const std::string&, XmlRpc::XmlRpcValue*) { return false; }
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  std::vector<core::BodyModel> models;
-  models.emplace_back("box", core::MakeBox(1.0, Eigen::Vector3d(0.2, 0.2, 0.2), 2));
-  std::vector<core::BodyState> states{
-      core::StateFromTwist(models[0], Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(),
-                           Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero())};
-  world = std::make_unique<core::World>(std::move(models), std::move(states), core::WorldDef{});
+  const core::BodyModel box("box", core::MakeBox(1.0, Eigen::Vector3d(0.2, 0.2, 0.2), 2));
+  const core::BodyState at_rest =
+      core::StateFromTwist(box, Eigen::Vector3d::Zero(), Eigen::Quaterniond::Identity(),
+                           Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
+  world = std::make_unique<core::World>(core::WorldDef{},
+                                        std::vector<core::BodyDef>{core::BodyDef(box, at_rest)});
   return 0;
 }
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  rigid_body_sim::SceneBodies entry;
+  std::optional<rigid_body_sim::SceneBody> entry;
   try {
-    rigid_body_sim::ParseBodyEntry(rigid_body_sim::XmlRpcFromYaml(text), world->size(), &entry,
-                                   NoParameters);
+    entry = rigid_body_sim::ParseBodyEntry(rigid_body_sim::XmlRpcFromYaml(text), world->size(),
+                                           NoParameters);
   } catch (const std::exception& error) {  // SceneError: the node's answer
     if (Verbose()) std::fprintf(stderr, "refused: %s\n", error.what());
     return 0;
   }
   // XmlRpc::XmlRpcException or anything else escapes: libFuzzer reports it.
-  if (entry.models.size() != 1 || entry.initial_states.size() != 1 ||
-      entry.properties.size() != 1) {
-    Fail("one model, state and set of properties");
-  }
-  const core::BodyModel& model = entry.models[0];
-  const core::BodyState& state = entry.initial_states[0];
+  const core::BodyModel& model = entry->def.model;
+  const core::BodyState& state = entry->def.initial_state;
   if (!(std::isfinite(model.mass()) && model.mass() > 0.0)) Fail("finite positive total mass");
   if (!model.inertia().allFinite() || !model.inverse_inertia().allFinite()) Fail("finite inertia");
   if (!Finite(state)) Fail("finite initial state");
@@ -99,7 +96,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   const std::size_t before = world->size();
   try {
-    world->AddBody(std::move(entry.models[0]), state, entry.properties[0]);
+    world->AddBody(std::move(entry->def));
   } catch (const std::exception& error) {  // a name in use, a state out of bounds
     if (Verbose()) std::fprintf(stderr, "World: %s\n", error.what());
     if (world->size() != before) Fail("a refused body left in the world");

@@ -174,8 +174,7 @@ std::vector<core::BodyModel> MakeModels() {
 
 // The bodies and their initial states, the same for every input: built once
 // (LLVMFuzzerInitialize), copied into each input's world.
-std::vector<core::BodyModel> scene_models;
-std::vector<core::BodyState> scene_states;
+std::vector<core::BodyDef> scene_bodies;
 
 // The most stepping one input may do, in body-substeps (a step costs its
 // largest substep count times the bodies): stepping is nearly all of an
@@ -255,11 +254,11 @@ ros::Time Stamp(ByteReader* in, const Setup& setup, const core::World& world) {
 }  // namespace
 
 extern "C" int LLVMFuzzerInitialize(int*, char***) {
-  scene_models = MakeModels();
-  for (const core::BodyModel& m : scene_models) {
-    scene_states.push_back(
+  for (core::BodyModel& m : MakeModels()) {
+    const core::BodyState state =
         core::StateFromTwist(m, Eigen::Vector3d(0.0, 0.0, 1.0), Eigen::Quaterniond::Identity(),
-                             Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0.0, 0.0, 0.5)));
+                             Eigen::Vector3d(0.1, 0, 0), Eigen::Vector3d(0.0, 0.0, 0.5));
+    scene_bodies.emplace_back(std::move(m), state);
   }
   return 0;
 }
@@ -290,7 +289,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   setup.start_stamp = ros::Time(kStarts[in.Byte() % 4], 123456789u);
   options.start_time_s = 0.0;
 
-  core::World world(scene_models, scene_states, options);
+  core::World world(options, scene_bodies);
   if (Verbose()) {
     std::fprintf(stderr,
                  "integrator %s dt %g gravity [%g %g %g] timeout %g tf_prefix '%s' start %u.%09u\n",

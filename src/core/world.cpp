@@ -35,23 +35,13 @@ constexpr std::size_t kBodiesPerBlock = 1024;
 
 }  // namespace
 
-World::World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
-             const WorldDef& options, std::vector<BodyProperties> properties,
-             std::vector<BodyFrames> frames)
-    : options_(options), integrator_(MakeIntegrator(options.integrator)) {
+World::World(const WorldDef& def, std::vector<BodyDef> bodies)
+    : options_(def), integrator_(MakeIntegrator(def.integrator)) {
   CheckWorldDef(options_);
-  if (properties.empty()) properties.resize(models.size());
-  if (frames.empty()) frames.resize(models.size());
-  if (initial_states.size() != models.size() || properties.size() != models.size() ||
-      frames.size() != models.size()) {
-    throw std::invalid_argument(
-        "one initial state, one set of properties and one set of frames per body is required");
-  }
   has_gravity_ = !options_.gravity.isZero(0.0);
-  for (std::size_t i = 0; i < models.size(); ++i) {
-    BodyDef def{std::move(models[i]), initial_states[i], properties[i], std::move(frames[i])};
-    CheckBody(i, def);
-    const BodyId id = bodies_.Add(std::move(def));
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    CheckBody(i, bodies[i]);
+    const BodyId id = bodies_.Add(std::move(bodies[i]));
     PrepareBody(i);
     wrenches_.AddBody(id, bodies_.hot().models[i].particle_count());
   }

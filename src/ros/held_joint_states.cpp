@@ -17,8 +17,7 @@ HeldJointStates::HeldJointStates(ros::NodeHandle private_nh) {
       [subscribers](const ros::SingleSubscriberPublisher&) { --*subscribers; });
 }
 
-void HeldJointStates::OnBodyAdded(const core::World& world, core::BodyId id) {
-  const std::vector<std::string>& joints = world.frames(id).held_joints;
+void HeldJointStates::OnBodyAdded(core::BodyId id, const std::vector<std::string>& joints) {
   if (joints.empty()) return;
   bodies_.emplace_back(id, joints);
   stale_ = true;

@@ -156,11 +156,12 @@ std::optional<UrdfEntry> ReadUrdfKey(const XmlRpcValue& body, const std::string&
 }
 
 // One entry of `bodies` named `name`, its `urdf` body already read if it has
-// one; errors name the key, the caller adds the entry.
-core::BodyDef ReadBody(const XmlRpcValue& body, const std::string& name,
-                       std::optional<UrdfEntry> urdf) {
+// one; errors name the key, the caller the entry.
+SceneBody ReadBody(const XmlRpcValue& body, const std::string& name,
+                   std::optional<UrdfEntry> urdf) {
   std::optional<core::BodyModel> model;
   core::BodyFrames frames;
+  BodyGraphNames graph;
   if (body.hasMember("particles")) {
     CheckKeys(body, {"particles"});
     model.emplace(name, ReadParticles(body["particles"]));
@@ -177,6 +178,7 @@ core::BodyDef ReadBody(const XmlRpcValue& body, const std::string& name,
   } else {
     model.emplace(std::move(urdf->model));
     frames = std::move(urdf->frames);
+    graph = std::move(urdf->graph);
   }
   frames.origin = ReadFrameOrigin(body, frames.origin);
   if (body.hasMember("sites")) frames.sites = ReadSites(body["sites"], name);
@@ -191,13 +193,14 @@ core::BodyDef ReadBody(const XmlRpcValue& body, const std::string& name,
   // Unique names and a state the world's step can take are the World's to check.
   const core::BodyState initial_state = StateAtFrameOrigin(
       *model, frames.origin, position, orientation, linear_velocity, angular_velocity);
-  return core::BodyDef{std::move(*model), initial_state, properties, std::move(frames)};
+  return SceneBody{core::BodyDef{std::move(*model), initial_state, properties, std::move(frames)},
+                   std::move(graph)};
 }
 
 }  // namespace
 
-void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies,
-                    const UrdfParamLookup& lookup) {
+SceneBody ParseBodyEntry(const XmlRpcValue& body, std::size_t index,
+                         const UrdfParamLookup& lookup) {
   std::string entry = "bodies[" + std::to_string(index) + "]";
   if (body.getType() != XmlRpcValue::TypeStruct) {
     throw SceneError(entry +
@@ -234,18 +237,13 @@ void ParseBodyEntry(const XmlRpcValue& body, std::size_t index, SceneBodies* sce
     entry += " (name '" + name + "')";
   }
   try {
-    core::BodyDef def = ReadBody(body, name, std::move(urdf));
-    scene_bodies->models.push_back(std::move(def.model));
-    scene_bodies->initial_states.push_back(def.initial_state);
-    scene_bodies->properties.push_back(def.properties);
-    scene_bodies->frames.push_back(std::move(def.frames));
+    return ReadBody(body, name, std::move(urdf));
   } catch (const std::exception& error) {  // SceneError, or the core's std::invalid_argument
     throw SceneError(entry + ": " + error.what());
   }
 }
 
-void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies,
-                 const UrdfParamLookup& lookup) {
+std::vector<SceneBody> ParseBodies(const XmlRpcValue& bodies, const UrdfParamLookup& lookup) {
   if (bodies.getType() != XmlRpcValue::TypeArray) {  // an empty list is an empty world
     throw SceneError("~bodies must be a list of bodies, got " + Describe(bodies));
   }
@@ -253,16 +251,18 @@ void ParseBodies(const XmlRpcValue& bodies, SceneBodies* scene_bodies,
     throw SceneError("~bodies has " + std::to_string(bodies.size()) + " entries, at most " +
                      std::to_string(kMaxSceneBodies) + " are allowed");
   }
-  for (int i = 0; i < bodies.size(); ++i) ParseBodyEntry(bodies[i], i, scene_bodies, lookup);
+  std::vector<SceneBody> scene_bodies;
+  scene_bodies.reserve(static_cast<std::size_t>(bodies.size()));
+  for (int i = 0; i < bodies.size(); ++i) {
+    scene_bodies.push_back(ParseBodyEntry(bodies[i], i, lookup));
+  }
+  return scene_bodies;
 }
 
-std::vector<core::BodyDef> BodyDefs(const SceneBodies& scene_bodies) {
+std::vector<core::BodyDef> CoreDefs(const std::vector<SceneBody>& bodies) {
   std::vector<core::BodyDef> defs;
-  defs.reserve(scene_bodies.models.size());
-  for (std::size_t i = 0; i < scene_bodies.models.size(); ++i) {
-    defs.push_back(core::BodyDef{scene_bodies.models[i], scene_bodies.initial_states[i],
-                                 scene_bodies.properties[i], scene_bodies.frames[i]});
-  }
+  defs.reserve(bodies.size());
+  for (const SceneBody& body : bodies) defs.push_back(body.def);
   return defs;
 }
 

@@ -18,14 +18,15 @@ UrdfEntry ReadUrdfEntry(const XmlRpc::XmlRpcValue& urdf, const std::string& name
   }
   core::BodyFrames frames;
   frames.origin = core::FrameOrigin::kReference;
-  frames.tf_frame = body.root_link;
-  frames.broadcast_sites = false;
-  frames.held_joints = std::move(body.moving_joints);
   for (UrdfSite& link : body.sites) {
     CheckSiteName(link.name, "urdf: link name");
     frames.sites.push_back(core::Site{std::move(link.name), link.position_m, link.orientation});
   }
-  return UrdfEntry{std::move(body.model), std::move(frames)};
+  BodyGraphNames graph;
+  graph.tf_frame = body.root_link;
+  graph.broadcast_sites = false;
+  graph.held_joints = std::move(body.moving_joints);
+  return UrdfEntry{std::move(body.model), std::move(frames), std::move(graph)};
 }
 
 }  // namespace rigid_body_sim

@@ -215,17 +215,17 @@ bool ServiceFront::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response&
   bool added = false;
   std::string message;
   {
-    SceneBodies entry;
+    std::optional<SceneBody> body;
     try {
       const std::size_t index = editor_.body_count();
       if (index >= kMaxSceneBodies) throw SceneError(BodyLimitMessage(index));
-      ParseBodyEntry(XmlRpcFromYaml(request.body_yaml), index, &entry);
+      body = ParseBodyEntry(XmlRpcFromYaml(request.body_yaml), index);
     } catch (const std::exception& error) {  // SceneError, or a model the core refuses
       message = error.what();
     }
-    if (!entry.models.empty()) {
+    if (body) {
       const std::optional<bool> taken = requests_.OnSteppingThread(
-          [this, &entry, &message] { return AddSpawnedBody(std::move(entry), &message); });
+          [this, &body, &message] { return AddSpawnedBody(std::move(*body), &message); });
       if (!taken) message = "the node is shutting down";
       added = taken.value_or(false);
     }
@@ -234,11 +234,11 @@ bool ServiceFront::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response&
   return Reply("spawn_body", added, std::move(message), &response);
 }
 
-bool ServiceFront::AddSpawnedBody(SceneBodies entry, std::string* message) {
+bool ServiceFront::AddSpawnedBody(SceneBody body, std::string* message) {
   std::size_t index = 0;
   try {
     if (world_.size() >= kMaxSceneBodies) throw SceneError(BodyLimitMessage(world_.size()));
-    index = editor_.AddBody(std::move(entry));
+    index = editor_.AddBody(std::move(body));
   } catch (const std::exception& error) {  // SceneError, or the world refusing the body
     *message = error.what();
     return false;

@@ -19,35 +19,41 @@ constexpr double kMaxCatchUp_s = 0.1;
 // How long a paused loop waits for callbacks before checking again.
 constexpr std::chrono::milliseconds kPausedWait(50);
 
-core::WorldDef MakeWorldOptions(const NodeSettings& settings) {
-  core::WorldDef options;
-  options.integrator = settings.integrator;
-  options.dt_s = 1.0 / settings.rate_hz;
-  options.gravity = settings.gravity_mps2;
-  options.wrench_timeout_s = settings.wrench_timeout_s;
-  options.max_substeps = settings.max_substeps;
-  options.threads = settings.threads;
-  return options;
+core::WorldDef MakeWorldDef(const NodeSettings& settings) {
+  core::WorldDef def;
+  def.integrator = settings.integrator;
+  def.dt_s = 1.0 / settings.rate_hz;
+  def.gravity = settings.gravity_mps2;
+  def.wrench_timeout_s = settings.wrench_timeout_s;
+  def.max_substeps = settings.max_substeps;
+  def.threads = settings.threads;
+  return def;
+}
+
+std::vector<core::BodyDef> TakeCoreDefs(std::vector<SceneBody>* bodies) {
+  std::vector<core::BodyDef> defs;
+  defs.reserve(bodies->size());
+  for (SceneBody& body : *bodies) defs.push_back(std::move(body.def));
+  return defs;
 }
 
 }  // namespace
 
 SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
     : settings_(scene.settings),
-      world_(std::move(scene.bodies.models), std::move(scene.bodies.initial_states),
-             MakeWorldOptions(settings_), std::move(scene.bodies.properties),
-             std::move(scene.bodies.frames)),
+      graph_(scene.bodies),
+      world_(MakeWorldDef(settings_), TakeCoreDefs(&scene.bodies)),
       lattice_(settings_),
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
       intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix,
                                std::move(scene.other_shard_bodies), settings_.shard.count)),
-      publisher_(private_nh, settings_, world_,
+      publisher_(private_nh, settings_, world_, graph_,
                  [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
                    front_.OnBodyWrench(body, msg);
                  }),
-      static_frames_(settings_.tf_prefix, world_),
+      static_frames_(settings_.tf_prefix, world_, graph_),
       diagnostics_(private_nh, settings_, world_),
-      editor_(&world_,
+      editor_(&world_, &graph_,
               [this](const WorldEvent& event) { diagnostics_.OnWorldEvent(event, world_); }),
       front_(private_nh, settings_, this, &editor_, &intake_) {
   // Each follows every spawn and delete.

@@ -44,13 +44,15 @@ void StatePublisher::Advertise(ros::NodeHandle& nh, const std::string& topic,
 }
 
 StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings,
-                               const core::World& world, BodyTopics::WrenchCallback on_body_wrench)
+                               const core::World& world, const BodyGraphTable& graph,
+                               BodyTopics::WrenchCallback on_body_wrench)
     : world_frame_(settings.world_frame),
       publish_clock_(settings.publish_clock && settings.shard.index == 0),  // one /clock
       publish_tf_(settings.publish_tf),
       particle_marker_diameter_m_(settings.particle_marker_diameter_m),
       tf_prefix_(settings.tf_prefix),
       imu_noise_(settings.imu_noise),
+      graph_(graph),
       body_topics_(private_nh, settings.per_body_topics, std::move(on_body_wrench)),
       joint_states_(private_nh) {
   ros::NodeHandle root;
@@ -63,11 +65,10 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
 
 void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
   const std::string& name = world.model(id).name();
-  const core::BodyFrames& frames = world.frames(id);
-  per_body_.Insert(id, {{BodyFrameId(tf_prefix_, core::TfFrameName(frames, name)), frames.origin},
+  per_body_.Insert(id, {{BodyFrameId(tf_prefix_, graph_.TfFrame(name)), world.frames(id).origin},
                         next_marker_id_++});
   body_topics_.Add(id, name);
-  joint_states_.OnBodyAdded(world, id);
+  joint_states_.OnBodyAdded(id, graph_.at(name).held_joints);
 }
 
 void StatePublisher::OnBodyRemoved(const core::World& /*world*/, core::BodyId id) {

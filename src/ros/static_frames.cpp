@@ -16,10 +16,10 @@ constexpr std::uint32_t kQueueSize = 100;  // as tf2_ros::StaticTransformBroadca
 
 std::vector<geometry_msgs::TransformStamped> SiteTransforms(const core::World& world,
                                                             core::BodyId id,
+                                                            const std::string& tf_frame,
                                                             const std::string& tf_prefix) {
   const core::BodyFrames& frames = world.frames(id);
-  const std::string body_frame =
-      BodyFrameId(tf_prefix, core::TfFrameName(frames, world.model(id).name()));
+  const std::string body_frame = BodyFrameId(tf_prefix, tf_frame);
   // The body frame's origin in reference coordinates: x̄_CM or 0.
   const Eigen::Vector3d origin = frames.origin == core::FrameOrigin::kCom
                                      ? world.model(id).reference_com()
@@ -35,8 +35,9 @@ std::vector<geometry_msgs::TransformStamped> SiteTransforms(const core::World& w
   return transforms;
 }
 
-StaticFrames::StaticFrames(const std::string& tf_prefix, const core::World& world)
-    : tf_prefix_(tf_prefix) {
+StaticFrames::StaticFrames(const std::string& tf_prefix, const core::World& world,
+                           const BodyGraphTable& graph)
+    : tf_prefix_(tf_prefix), graph_(graph) {
   tf_static_ = ros::NodeHandle().advertise<tf2_msgs::TFMessage>("/tf_static", kQueueSize,
                                                                 /*latch=*/true);
   for (std::size_t index = 0; index < world.size(); ++index) Add(world, world.id(index));
@@ -58,9 +59,9 @@ void StaticFrames::OnBodyRemoved(const core::World& /*world*/, core::BodyId id) 
 }
 
 void StaticFrames::Add(const core::World& world, core::BodyId id) {
-  const core::BodyFrames& frames = world.frames(id);
-  if (!frames.broadcast_sites || frames.sites.empty()) return;
-  bodies_.emplace_back(id, SiteTransforms(world, id, tf_prefix_));
+  const std::string& name = world.model(id).name();
+  if (!graph_.at(name).broadcast_sites || world.frames(id).sites.empty()) return;
+  bodies_.emplace_back(id, SiteTransforms(world, id, graph_.TfFrame(name), tf_prefix_));
 }
 
 void StaticFrames::Send() {

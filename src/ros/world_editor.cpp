@@ -5,8 +5,8 @@
 
 namespace rigid_body_sim {
 
-WorldEditor::WorldEditor(core::World* world, EventSink on_event)
-    : world_(*world), on_event_(std::move(on_event)), body_count_(world->size()) {}
+WorldEditor::WorldEditor(core::World* world, BodyGraphTable* graph, EventSink on_event)
+    : world_(*world), graph_(*graph), on_event_(std::move(on_event)), body_count_(world->size()) {}
 
 void WorldEditor::HoldWrench(const core::ParticleWrench& wrench) {
   world_.HoldWrench(wrench);
@@ -44,15 +44,23 @@ void WorldEditor::Reset() {
   Notify(WorldEvent::Kind::kReset);
 }
 
-std::size_t WorldEditor::AddBody(SceneBodies entry) {
-  world_.AddBody(core::BodyDef{std::move(entry.models[0]), entry.initial_states[0],
-                               entry.properties[0], std::move(entry.frames[0])});
+std::size_t WorldEditor::AddBody(SceneBody body) {
+  const std::string name = body.def.model.name();
+  const bool named_anew = graph_.Add(name, std::move(body.graph));
+  try {
+    world_.AddBody(std::move(body.def));
+  } catch (...) {
+    if (named_anew) graph_.Remove(name);
+    throw;
+  }
   body_count_ = world_.size();
   return world_.size() - 1;
 }
 
 void WorldEditor::RemoveBody(core::BodyId body) {
+  const std::string name = world_.model(body).name();
   world_.RemoveBody(body);
+  graph_.Remove(name);
   body_count_ = world_.size();
 }
 

@@ -26,7 +26,7 @@ void ExpectReplayedStepsGatheredSteps(World* world, const HoldWrenches& hold, in
   for (int n = 0; n < steps; ++n) {
     std::vector<BodyProperties> properties;
     for (std::size_t i = 0; i < world->size(); ++i) properties.push_back(world->properties(i));
-    World rebuilt(world->models(), world->states(), world->options(), properties);
+    World rebuilt(world->options(), test::Bodies(world->models(), world->states(), properties));
     hold(&rebuilt);
     world->Step();
     rebuilt.Step();
@@ -59,7 +59,7 @@ World MakeSlowWorld() {
   WorldDef options;
   options.dt_s = 1e-3;
   options.gravity = {0.0, 0.0, -9.81};
-  return World(models, states, options, properties);
+  return World(options, test::Bodies(models, states, properties));
 }
 
 // All but every tenth body pushed at a particle, in world axes for even

@@ -5,6 +5,7 @@
 #include "rigid_body_sim/core/conservation_monitor.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/world.h"
+#include "test_bodies.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -16,7 +17,7 @@ World ThreeTumblingBoxes() {
     models.emplace_back("box" + std::to_string(i), MakeBox(1.0, {0.2, 0.3, 0.4}, 2));
     states[i].angular_momentum = {0.01, 0.02 * (i + 1), 0.0};
   }
-  return World(std::move(models), std::move(states), WorldDef{});
+  return World(WorldDef{}, test::Bodies(std::move(models), std::move(states)));
 }
 
 TEST(ConservationMonitor, SweepReportsTheLargestDriftOnceAPassIsComplete) {

@@ -47,7 +47,7 @@ World MakeWorld(std::vector<BodyModel> models, std::vector<BodyState> states, do
   options.integrator = "exact_free";
   options.dt_s = dt_s;
   options.threads = threads;
-  return World(std::move(models), std::move(states), options);
+  return World(options, test::Bodies(std::move(models), std::move(states)));
 }
 
 // A real number as hi + lo (|lo| <= ulp(hi)/2): the reference's own phase
@@ -198,7 +198,7 @@ TEST(ExactFreeFlow, GravityKeepsTheFlow) {
   options.integrator = "exact_free";
   options.dt_s = 0.2;
   options.gravity = {0.0, 0.0, -9.81};
-  World world({model}, {initial}, options);
+  World world(options, {BodyDef(model, initial)});
   for (int n = 0; n < 5000; ++n) world.Step();
   EXPECT_LE(
       test::AngleBetween(world.state(0).orientation, LongRunReference(model, initial, 5000, 0.2)),

@@ -427,7 +427,7 @@ TEST(Shapes, ResolutionOneIsRefused) {
 
 std::vector<BodyState> StepWorld(const BodyModel& model, const BodyState& start,
                                  const WorldDef& options, int steps) {
-  World world({model}, {start}, options);
+  World world(options, {BodyDef(model, start)});
   BodyWrench push;
   push.body = world.id(0);
   push.axes = WrenchAxes::kBody;

@@ -150,7 +150,7 @@ TEST_P(EveryIntegrator, PushedPointMassAcceleratesAsFOverMThroughTheWorld) {
     WorldDef options;
     options.integrator = GetParam();
     options.dt_s = dt;
-    World world({point}, {initial}, options);
+    World world(options, {BodyDef(point, initial)});
     ParticleWrench push;
     push.body = world.id(0);
     push.force = Eigen::Vector3d(0.0, 0.7, -1.4) * (1.0 + uniform(rng));

@@ -62,7 +62,7 @@ TEST_P(CasimirComposition, TorqueFreeRoundOffWalksLikeTheRootOfTheSteps) {
     }
     copies.emplace_back("copy" + std::to_string(i), particles);
   }
-  World world(std::move(copies), std::vector<BodyState>(8, Tumbling()), options);
+  World world(options, test::Bodies(std::move(copies), std::vector<BodyState>(8, Tumbling())));
   for (long n = 0; n < kSteps; ++n) world.Step();
   const double lanes_error = test::AngleBetween(world.states()[0].orientation, exact);
   EXPECT_LT(lanes_error, RandomWalkBound()) << "in lanes";

@@ -40,7 +40,7 @@ TEST(StateHash, IsFnv1aOverTheThirteenPublishedValuesInSceneOrder) {
   states[0].linear_momentum = {0.25, 0.0, -3.0};
   states[0].angular_momentum = {1e-9, 2.0, 0.0};
   states[1].position = {0.0, 0.0, 1.0};
-  const World world({test::Diag123Body(), test::PointBody()}, states, WorldDef());
+  const World world(WorldDef(), test::Bodies({test::Diag123Body(), test::PointBody()}, states));
 
   Fnv1a64 expected;
   for (const BodyState& state : states) {
@@ -58,9 +58,9 @@ TEST(StateHash, IsFnv1aOverTheThirteenPublishedValuesInSceneOrder) {
 TEST(StateHash, ChangesWithOneUlpOfOneValue) {
   std::vector<BodyState> states(1);
   states[0].angular_momentum = {0.0, 1.0, 0.0};
-  const World world({test::Diag123Body()}, states, WorldDef());
+  const World world(WorldDef(), test::Bodies({test::Diag123Body()}, states));
   states[0].angular_momentum.y() = std::nextafter(1.0, 2.0);
-  const World nudged({test::Diag123Body()}, states, WorldDef());
+  const World nudged(WorldDef(), test::Bodies({test::Diag123Body()}, states));
   EXPECT_NE(StateHash(world), StateHash(nudged));
 }
 

@@ -60,7 +60,7 @@ World MakeFreeWorld(const std::string& integrator, double dt_s) {
   WorldDef options;
   options.integrator = integrator;
   options.dt_s = dt_s;
-  return World(std::move(models), std::move(states), options);
+  return World(options, test::Bodies(std::move(models), std::move(states)));
 }
 
 // Adds to `load` the force scale·(0.5, −1, 0.25)·(1 + 0.1 i) [N] at particle
@@ -219,7 +219,7 @@ World WideLanesWorld(const std::string& scheme, const std::vector<BodyModel>& mo
   WorldDef options;
   options.integrator = scheme;
   options.dt_s = 0.25;
-  World world(models, states, options);
+  World world(options, test::Bodies(models, states));
   for (std::size_t i = 0; i < world.size(); ++i) {
     EXPECT_FALSE(FitsFreeLanes(world.model(i), world.state(i), options.dt_s)) << "body " << i;
     EXPECT_EQ(world.SubstepsFor(i, world.state(i)), 1u) << "body " << i;
@@ -323,7 +323,7 @@ TEST(LoadedLanes, TopsAndSpheresUnderCouplesAtLargeStepsAreStepBodyByBody) {
     if (i % 8 == 5) loads[i].AddBodyCouple({0.0, 0.0, 0.01});
     bodies.push_back(i);
   }
-  const World world(models, initial, WorldDef{});
+  const World world(WorldDef{}, test::Bodies(models, initial));
   // Past the series for the least reach of the three (casimir_rkn4's 0.75
   // dt), within the wide range for the largest (casimir_rkn6's 1.33 dt and
   // kicks of 2.5 dt).
@@ -378,7 +378,7 @@ TEST_P(EveryScheme, StepLoadedOfABatchIsStepBodyByBody) {
   options.dt_s = dt;
   options.gravity = {0.3, -0.2, -9.81};
   World free_world = MakeFreeWorld(GetParam(), dt);
-  World world(free_world.models(), free_world.states(), options);
+  World world(options, test::Bodies(free_world.models(), free_world.states()));
   std::vector<HeldLoads> loads(world.size());
   for (std::size_t i = 0; i < world.size(); ++i) {
     loads[i].AddCentralForce(world.model(i).mass() * options.gravity);
@@ -526,7 +526,7 @@ TEST_P(EveryScheme, SubsteppedBodiesInBatchesAreStepBodyByBody) {
   WorldDef options;
   options.integrator = GetParam();
   options.dt_s = dt;
-  World world(models, states, options);
+  World world(options, test::Bodies(models, states));
   std::vector<HeldLoads> loads(world.size());
   std::vector<char> loaded(world.size(), 0);
   for (std::size_t i = 0; i < world.size(); i += 2) {
@@ -620,7 +620,7 @@ TEST_P(LaneCacheOf, BlocksPastTheKeptOnesGiveWhatTheKeptOnesGive) {
   }
   WorldDef options;
   options.integrator = kDefaultIntegrator;
-  World world(models, states, options);
+  World world(options, test::Bodies(models, states));
   std::vector<BodyState> cached = world.states();
   std::vector<BodyState> uncached = cached;
   std::vector<HeldLoads> loads(count);
@@ -663,7 +663,7 @@ TEST(LaneCacheReplay, ABatchOfOtherBodiesInTheSamePlaceGathersThem) {
     states[i].angular_momentum = {0.3, 1.0 + 1e-3 * i, -0.2};
   }
   const double dt = 1e-3;
-  World world(models, states, WorldDef{});
+  World world(WorldDef{}, test::Bodies(models, states));
   std::vector<BodyState> cached = world.states();
   std::vector<BodyState> uncached = cached;
   std::vector<HeldLoads> loads(states.size());
@@ -709,7 +709,7 @@ void PushEveryBody(World* world) {
 // Steps `world` and a world built anew from its models and states, pushed as
 // PushEveryBody pushes, once each; expects the same states bit for bit.
 void ExpectStepOfARebuiltWorld(World* world, const std::string& after) {
-  World rebuilt(world->models(), world->states(), world->options());
+  World rebuilt(world->options(), test::Bodies(world->models(), world->states()));
   PushEveryBody(&rebuilt);
   world->Step();
   rebuilt.Step();
@@ -755,7 +755,7 @@ TEST_P(EveryScheme, StatesWrittenBetweenStepsAreWhereTheNextStepStarts) {
   WorldDef options;
   options.integrator = GetParam();
   options.dt_s = 0.1;
-  World spun(models, states, options);
+  World spun(options, test::Bodies(models, states));
   PushEveryBody(&spun);
   spun.Step();
   spun.Step();

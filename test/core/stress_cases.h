@@ -103,7 +103,7 @@ inline World RodAndParticleWorld(const std::string& integrator, double dt_s) {
   states[0].orientation = kTilt;
   states[0].angular_momentum = kTilt * Eigen::Vector3d(0.0, 0.3, -0.2);
   states[1].linear_momentum = {1.0, 0.0, 0.0};
-  return World({RodBody(), PointBody()}, states, options);
+  return World(options, test::Bodies({RodBody(), PointBody()}, states));
 }
 
 }  // namespace rigid_body_sim::core::test

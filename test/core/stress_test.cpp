@@ -174,7 +174,7 @@ TEST(Stress, SpinSweepThroughTheWorldUpToHOmegaTen) {
                                                Vector3d::Zero(), test::kTilt * (omega * direction));
       WorldDef options;
       options.dt_s = kDt;
-      World world({body}, {initial}, options);
+      World world(options, {BodyDef(body, initial)});
       const double e0 = KineticEnergy(body, initial);
       const double l0 = initial.angular_momentum.norm();
       double energy_error = 0.0, momentum_error = 0.0;
@@ -404,7 +404,7 @@ TEST(Stress, RandomParticleForcesKeepEveryStateFinite) {
     options.integrator = name;
     options.dt_s = kDt;
     options.gravity = {0, 0, -9.81};
-    World world(models, states, options);
+    World world(options, test::Bodies(models, states));
     std::mt19937_64 rng(seed);
     double max_h_omega = 0.0;
     std::uint32_t max_substeps = 1;

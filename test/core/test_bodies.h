@@ -8,10 +8,25 @@
 
 #include <Eigen/Core>
 
+#include "rigid_body_sim/core/body_def.h"
 #include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/body_properties.h"
 #include "rigid_body_sim/core/body_state.h"
 
 namespace rigid_body_sim::core::test {
+
+// Body i of `models` starting from `states[i]` with `properties[i]` (none:
+// the defaults), as a World takes them.
+inline std::vector<BodyDef> Bodies(const std::vector<BodyModel>& models,
+                                   const std::vector<BodyState>& states,
+                                   const std::vector<BodyProperties>& properties = {}) {
+  std::vector<BodyDef> bodies;
+  for (std::size_t i = 0; i < models.size(); ++i) {
+    bodies.emplace_back(models[i], states.at(i),
+                        properties.empty() ? BodyProperties{} : properties.at(i));
+  }
+  return bodies;
+}
 
 // Four unit masses at ±a e_x, ±b e_y (a = 1 m, b = √½ m): a flat body with
 // Ī = diag(1, 2, 3) kg m² in its own axes, the headline scene's Dzhanibekov body.

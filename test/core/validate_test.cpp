@@ -31,7 +31,7 @@ std::string MessageOf(Check check) {
 }
 
 std::string WorldMessage(const WorldDef& def) {
-  return MessageOf([&] { World({test::PointBody()}, {BodyState{}}, def); });
+  return MessageOf([&] { World(def, {BodyDef(test::PointBody(), BodyState{})}); });
 }
 
 TEST(Check, ThrowsTheMessageOnlyWhenTheConditionFails) {
@@ -76,7 +76,7 @@ TEST(Validate, TheWorldConstructorRefusesWhatItsSettersRefuse) {
   def.max_substeps = 0;  // doc/node.md: 1 to 10⁶
   EXPECT_EQ(WorldMessage(def), "max_substeps must be >= 1");
 
-  World world({test::PointBody()}, {BodyState{}}, WorldDef{});
+  World world(WorldDef{}, {BodyDef(test::PointBody(), BodyState{})});
   EXPECT_EQ(MessageOf([&] { world.SetGravity({kNan, 0.0, 0.0}); }), "gravity must be finite");
   EXPECT_EQ(MessageOf([&] { world.SetWrenchTimeout(-1.0); }),
             "wrench timeout must be finite and >= 0");
@@ -224,7 +224,7 @@ TEST(Validate, SiteNamesAreUniqueAmongBodiesAndSites) {
             }),
             "bodies[1] (name 'tip'): name duplicates a site of bodies[0]");
   // The World checks as CheckBodyDefs does, and frees a removed body's names.
-  World scene({}, {}, world);
+  World scene(world, test::Bodies({}, {}));
   scene.AddBody(rod);
   EXPECT_EQ(MessageOf([&] { scene.AddBody(tip); }),
             "bodies[1] (name 'tip'): name duplicates a site of bodies[0]");
@@ -239,8 +239,8 @@ TEST(Validate, ASceneIsCheckedAsTheWorldBuiltFromItChecksIt) {
   const std::string expected = "bodies[2] (name 'rod'): name duplicates bodies[0]";
   EXPECT_EQ(MessageOf([&] { CheckBodyDefs(twins, WorldDef{}); }), expected);
   EXPECT_EQ(MessageOf([&] {
-              World({test::RodBody(), test::PointBody(), test::RodBody()},
-                    std::vector<BodyState>(3), WorldDef{});
+              World(WorldDef{}, test::Bodies({test::RodBody(), test::PointBody(), test::RodBody()},
+                                             std::vector<BodyState>(3)));
             }),
             expected);
   EXPECT_EQ(MessageOf([&] { CheckBodyDefs({twins[0], twins[1]}, WorldDef{}); }), "accepted");
@@ -256,7 +256,7 @@ TEST(Validate, TheSpinCheckIsTheWorldsSubstepCount) {
       WorldDef def;
       def.integrator = name;
       def.max_substeps = max_substeps;
-      const World world({test::Diag123Body()}, {BodyState{}}, def);
+      const World world(def, {BodyDef(test::Diag123Body(), BodyState{})});
       int refused = 0;
       for (double l = 1.0; l < 1e7; l *= 1.07) {
         BodyDef body{test::Diag123Body()};

@@ -19,7 +19,7 @@ World MakeWorld(const WorldDef& options) {
   states[1].angular_momentum = {1.0, -0.5, 0.0};
   states[2].linear_momentum = {2.0, 0.0, 0.0};
   states[3].orientation = Eigen::Quaterniond(0.5, 0.5, 0.5, 0.5);
-  return World(models, states, options);
+  return World(options, test::Bodies(models, states));
 }
 
 TEST(World, TimeIsStartPlusStepsTimesDt) {
@@ -63,7 +63,7 @@ TEST(World, GravityScalesPerBody) {
   std::vector<BodyProperties> properties(3);
   properties[1].gravity_scale = 0.0;
   properties[2].gravity_scale = -2.5;
-  World world(models, std::vector<BodyState>(3), options, properties);
+  World world(options, test::Bodies(models, std::vector<BodyState>(3), properties));
   constexpr int kSteps = 100;
   for (int n = 0; n < kSteps; ++n) world.Step();
   // A constant force is integrated exactly: z = s g t² / 2, p_z = M s g t.
@@ -81,7 +81,7 @@ TEST(World, RejectsPropertiesItCannotSimulate) {
   std::vector<BodyProperties> properties(1);
   properties[0].angular_damping_per_s = -1.0;
   try {
-    World({test::PointBody()}, {BodyState{}}, WorldDef{}, properties);
+    World(WorldDef{}, test::Bodies({test::PointBody()}, {BodyState{}}, properties));
     FAIL() << "negative damping accepted";
   } catch (const std::invalid_argument& error) {
     EXPECT_NE(std::string(error.what()).find("angular_damping must be a finite number >= 0"),
@@ -193,7 +193,7 @@ TEST(World, DampedBodiesDecayExponentiallyThroughTheWorld) {
   properties[0].angular_damping_per_s = 3.0;
   properties[1].linear_damping_per_s = 0.5;
   const BodyModel point("point", {{2.0, {0.0, 0.0, 0.0}}});
-  World world({test::Diag123Body(), point}, states, options, properties);
+  World world(options, test::Bodies({test::Diag123Body(), point}, states, properties));
   constexpr int kSteps = 200;
   for (int n = 0; n < kSteps; ++n) world.Step();
   const double t = kSteps * options.dt_s;
@@ -245,8 +245,8 @@ TEST(World, RecordsTheStartVelocityAndTotalWrenchOfARequestedStepOnly) {
   properties[1].gravity_scale = 0.0;  // "resting": at rest and unloaded, skipped by Step
   WorldDef options;
   options.gravity = {0.0, 0.0, -9.81};
-  World world({body, BodyModel("resting", {{1.0, {0, 0, 0}}})}, {moving, BodyState{}}, options,
-              properties);
+  World world(options, test::Bodies({body, BodyModel("resting", {{1.0, {0, 0, 0}}})},
+                                    {moving, BodyState{}}, properties));
   ParticleWrench push;
   push.body = world.id(0);
   push.particle = 0;
@@ -297,8 +297,9 @@ TEST(World, RecordsTheStartVelocityOfTheBodyFramesOrigin) {
                      Eigen::Vector3d::Zero(), {0, 0, 3});
   BodyFrames reference;
   reference.origin = FrameOrigin::kReference;
-  World world({dumbbell, BodyModel("referenced", {{1.0, {0, 0, 0}}, {1.0, {2, 0, 0}}})},
-              {spinning, spinning}, WorldDef{}, {}, {BodyFrames{}, reference});
+  World world(WorldDef{}, {BodyDef(dumbbell, spinning),
+                           BodyDef(BodyModel("referenced", {{1.0, {0, 0, 0}}, {1.0, {2, 0, 0}}}),
+                                   spinning, {}, reference)});
   world.RecordNextStep();
   world.Step();
   EXPECT_EQ(world.last_step_record(0)->start_velocity_mps, Eigen::Vector3d::Zero());
@@ -353,7 +354,7 @@ TEST(World, BadOptionsAreNamed) {
   std::vector<BodyState> too_fast(1);
   too_fast[0].linear_momentum = {2.0 * 3.5e8, 0.0, 0.0};  // 3.5e8 m/s
   try {
-    World(one, too_fast, WorldDef{});
+    World(WorldDef{}, test::Bodies(one, too_fast));
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()),
@@ -361,7 +362,7 @@ TEST(World, BadOptionsAreNamed) {
   }
   std::vector<BodyModel> twins = {test::RodBody(), test::RodBody()};
   try {
-    World(twins, std::vector<BodyState>(2), WorldDef{});
+    World(WorldDef{}, test::Bodies(twins, std::vector<BodyState>(2)));
     FAIL();
   } catch (const std::invalid_argument& e) {
     EXPECT_EQ(std::string(e.what()), "bodies[1] (name 'rod'): name duplicates bodies[0]");
@@ -371,7 +372,7 @@ TEST(World, BadOptionsAreNamed) {
 // The setters between steps: each in force from the next step on, time and
 // states going on.
 World MakePointWorld(const WorldDef& options) {
-  return World({test::PointBody()}, std::vector<BodyState>(1), options);
+  return World(options, test::Bodies({test::PointBody()}, std::vector<BodyState>(1)));
 }
 
 TEST(World, AGravityChangeMidRunGivesTheExactFallOfTheNewGFromThatStepOn) {
@@ -446,7 +447,7 @@ TEST(World, AnIntegratorSwapKeepsStatesAndTimeAndStepsWithTheNewScheme) {
   WorldDef rk4 = options;
   rk4.integrator = "rk4";
   rk4.start_time_s = time;
-  World fresh(world.models(), before, rk4);
+  World fresh(rk4, test::Bodies(world.models(), before));
   world.Step();
   fresh.Step();
   for (std::size_t i = 0; i < before.size(); ++i) {
@@ -534,7 +535,7 @@ TEST(World, NSubstepsAreNStepsOfDtOverN) {
     const BodyModel body = test::Diag123Body();
     BodyState state;
     state.angular_momentum = Eigen::Vector3d(1.0, 2.0, 3.0).normalized() * 600.0;
-    World world({body}, {state}, coarse);
+    World world(coarse, {BodyDef(body, state)});
     const std::uint32_t n = world.SubstepsFor(0, state);
     if (integrator == "exact_free") {
       EXPECT_EQ(n, 1u);  // exact torque-free at any spin
@@ -543,7 +544,7 @@ TEST(World, NSubstepsAreNStepsOfDtOverN) {
     ASSERT_GT(n, 1u);
     WorldDef fine = coarse;
     fine.dt_s = 1e-3 / n;
-    World reference({body}, {state}, fine);
+    World reference(fine, {BodyDef(body, state)});
     world.Step();
     for (std::uint32_t k = 0; k < n; ++k) reference.Step();
     EXPECT_EQ(world.last_step_substeps_max(), n);

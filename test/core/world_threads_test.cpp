@@ -65,7 +65,7 @@ World MakeMixedWorld(std::size_t threads) {
   options.gravity = {0.3, -0.2, -9.81};
   options.max_substeps = 50;
   options.threads = threads;
-  World world(std::move(models), std::move(states), options, std::move(properties));
+  World world(options, test::Bodies(std::move(models), std::move(states), std::move(properties)));
   BodyState broken = world.state(57);
   broken.angular_momentum.x() = std::nan("");  // as a state set from outside
   world.SetBodyState(world.id(57), broken);
@@ -117,9 +117,9 @@ TEST(WorldThreads, MoreThreadsThanBodiesLeaveBlocksEmpty) {
   options.threads = 3;
   BodyState state;
   state.angular_momentum = {0.1, 0.2, 0.3};
-  World many({test::Diag123Body()}, {state}, options);
+  World many(options, {BodyDef(test::Diag123Body(), state)});
   options.threads = 1;
-  World one({test::Diag123Body()}, {state}, options);
+  World one(options, {BodyDef(test::Diag123Body(), state)});
   for (int n = 0; n < 100; ++n) {
     many.Step();
     one.Step();
@@ -130,7 +130,7 @@ TEST(WorldThreads, MoreThreadsThanBodiesLeaveBlocksEmpty) {
 TEST(WorldThreads, NoThreadIsRefused) {
   WorldDef options;
   options.threads = 0;
-  EXPECT_THROW(World({test::Diag123Body()}, {BodyState{}}, options), std::invalid_argument);
+  EXPECT_THROW(World(options, {BodyDef(test::Diag123Body(), BodyState{})}), std::invalid_argument);
 }
 
 }  // namespace

@@ -44,10 +44,8 @@ UrdfParamLookup Params(std::map<std::string, std::string> params) {
 }
 
 // The bodies of the YAML list `yaml`, parameters from `lookup`.
-SceneBodies Parse(const std::string& yaml, const UrdfParamLookup& lookup = Params({})) {
-  SceneBodies bodies;
-  ParseBodies(XmlRpcFromYaml(yaml), &bodies, lookup);
-  return bodies;
+std::vector<SceneBody> Parse(const std::string& yaml, const UrdfParamLookup& lookup = Params({})) {
+  return ParseBodies(XmlRpcFromYaml(yaml), lookup);
 }
 
 // The SceneError message of parsing `yaml`, or "" when it parses.
@@ -63,7 +61,7 @@ std::string ErrorOf(const std::string& yaml, const UrdfParamLookup& lookup = Par
 // The core's message for the scene as a World would check it, or "".
 std::string WorldErrorOf(const std::string& yaml) {
   try {
-    core::CheckBodyDefs(BodyDefs(Parse(yaml)), core::WorldDef());
+    core::CheckBodyDefs(CoreDefs(Parse(yaml)), core::WorldDef());
   } catch (const std::invalid_argument& error) {
     return error.what();
   }
@@ -95,8 +93,8 @@ std::string UrdfXmlEntry(const std::string& xml, const std::string& extra = "") 
 }
 
 TEST(SceneFrames, FrameIsComOrReference) {
-  EXPECT_EQ(Parse("[{" + kPuck + "}]").frames[0].origin, core::FrameOrigin::kCom);
-  EXPECT_EQ(Parse("[{" + kPuck + ", frame: reference}]").frames[0].origin,
+  EXPECT_EQ(Parse("[{" + kPuck + "}]")[0].def.frames.origin, core::FrameOrigin::kCom);
+  EXPECT_EQ(Parse("[{" + kPuck + ", frame: reference}]")[0].def.frames.origin,
             core::FrameOrigin::kReference);
   EXPECT_EQ(ErrorOf("[{" + kPuck + ", frame: origin}]"),
             "bodies[0] (name 'puck'): frame must be com or reference, got 'origin'");
@@ -108,12 +106,12 @@ TEST(SceneFrames, FrameIsComOrReference) {
 // R (−x̄) = (0, −0.1, 0) from the COM, so the COM is at (1, 2.1, 3); it moves
 // at v − ω × (0, −0.1, 0) = (0.5, 0, 0) − (0.2, 0, 0) = (0.3, 0, 0).
 TEST(SceneFrames, AReferenceFrameStateIsOfTheReferenceOrigin) {
-  const SceneBodies bodies =
+  const std::vector<SceneBody> bodies =
       Parse("[{" + kPuck +
             ", frame: reference, position: [1, 2, 3], orientation: [0, 0, 0.7071067811865476, "
             "0.7071067811865476], linear_velocity: [0.5, 0, 0], angular_velocity: [0, 0, 2]}]");
-  const core::BodyModel& model = bodies.models[0];
-  const core::BodyState& state = bodies.initial_states[0];
+  const core::BodyModel& model = bodies[0].def.model;
+  const core::BodyState& state = bodies[0].def.initial_state;
   EXPECT_TRUE(state.position.isApprox(Eigen::Vector3d(1.0, 2.1, 3.0), 1e-14));
   EXPECT_TRUE(state.linear_momentum.isApprox(1.5 * Eigen::Vector3d(0.3, 0.0, 0.0), 1e-14));
   const core::PointMotion origin = core::MotionOfPoint(
@@ -127,18 +125,18 @@ TEST(SceneFrames, AReferenceFrameStateIsOfTheReferenceOrigin) {
   EXPECT_TRUE(state.angular_momentum.isApprox(by_hand.angular_momentum, 1e-14));
 
   // frame: com keeps the COM where the entry says.
-  const SceneBodies com = Parse("[{" + kPuck + ", position: [1, 2, 3]}]");
-  EXPECT_EQ(com.initial_states[0].position, Eigen::Vector3d(1.0, 2.0, 3.0));
+  const std::vector<SceneBody> com = Parse("[{" + kPuck + ", position: [1, 2, 3]}]");
+  EXPECT_EQ(com[0].def.initial_state.position, Eigen::Vector3d(1.0, 2.0, 3.0));
 }
 
 TEST(SceneFrames, SitesLandAsGiven) {
-  const SceneBodies bodies =
+  const std::vector<SceneBody> bodies =
       Parse("[" +
             Puck("ball",
                  ", sites: [{name: tip, position: [0, 0, 0.1], orientation: [0, 0, 2, 0]}, "
                  "{name: center}]") +
             "]");
-  const std::vector<core::Site>& sites = bodies.frames[0].sites;
+  const std::vector<core::Site>& sites = bodies[0].def.frames.sites;
   ASSERT_EQ(sites.size(), 2u);
   EXPECT_EQ(sites[0].name, "tip");
   EXPECT_EQ(sites[0].position_m, Eigen::Vector3d(0.0, 0.0, 0.1));
@@ -146,9 +144,9 @@ TEST(SceneFrames, SitesLandAsGiven) {
   EXPECT_EQ(sites[1].name, "center");
   EXPECT_EQ(sites[1].position_m, Eigen::Vector3d::Zero());
   EXPECT_EQ(sites[1].orientation.coeffs(), Eigen::Quaterniond::Identity().coeffs());
-  EXPECT_TRUE(bodies.frames[0].broadcast_sites);
-  EXPECT_TRUE(bodies.frames[0].tf_frame.empty());  // the body's name
-  EXPECT_TRUE(Parse("[" + Puck("ball", ", sites: []") + "]").frames[0].sites.empty());
+  EXPECT_TRUE(bodies[0].graph.broadcast_sites);
+  EXPECT_TRUE(bodies[0].graph.tf_frame.empty());  // the body's name
+  EXPECT_TRUE(Parse("[" + Puck("ball", ", sites: []") + "]")[0].def.frames.sites.empty());
 }
 
 TEST(SceneFrames, SiteErrorsNameTheEntryAndTheKey) {
@@ -202,13 +200,12 @@ TEST(SceneFrames, SiteNamesAreUniqueAmongBodiesAndSites) {
             "bodies[1] (name 'tip'): name duplicates a site of bodies[0]");
 
   // ~spawn_body: the entry is read alone, the world refuses the clash.
-  SceneBodies scene = Parse("[" + Puck("a", ", sites: [{name: tip}]") + "]");
-  core::World world(scene.models, scene.initial_states, core::WorldDef{}, scene.properties,
-                    scene.frames);
-  SceneBodies spawned;
-  ParseBodyEntry(XmlRpcFromYaml(Puck("b", ", sites: [{name: tip}]")), world.size(), &spawned);
+  const std::vector<SceneBody> scene = Parse("[" + Puck("a", ", sites: [{name: tip}]") + "]");
+  core::World world(core::WorldDef{}, CoreDefs(scene));
+  SceneBody spawned =
+      ParseBodyEntry(XmlRpcFromYaml(Puck("b", ", sites: [{name: tip}]")), world.size());
   try {
-    world.AddBody(BodyDefs(spawned)[0]);
+    world.AddBody(std::move(spawned.def));
     FAIL() << "a duplicate site accepted";
   } catch (const std::invalid_argument& error) {
     EXPECT_STREQ(error.what(),
@@ -218,30 +215,29 @@ TEST(SceneFrames, SiteNamesAreUniqueAmongBodiesAndSites) {
 
 // config/quadrotor.urdf: base_link, 4 arms on fixed joints, 4 rotors on
 // continuous ones, an IMU link; 1.50 kg.
-void ExpectQuadrotor(const SceneBodies& bodies, const std::string& name) {
-  ASSERT_EQ(bodies.models.size(), 1u);
-  EXPECT_EQ(bodies.models[0].name(), name);
-  EXPECT_NEAR(bodies.models[0].mass(), 1.50, 1e-12);
-  EXPECT_EQ(bodies.models[0].particle_count(), 0u);
-  const core::BodyFrames& frames = bodies.frames[0];
+void ExpectQuadrotor(const std::vector<SceneBody>& bodies, const std::string& name) {
+  ASSERT_EQ(bodies.size(), 1u);
+  EXPECT_EQ(bodies[0].def.model.name(), name);
+  EXPECT_NEAR(bodies[0].def.model.mass(), 1.50, 1e-12);
+  EXPECT_EQ(bodies[0].def.model.particle_count(), 0u);
+  const core::BodyFrames& frames = bodies[0].def.frames;
+  const BodyGraphNames& graph = bodies[0].graph;
   EXPECT_EQ(frames.origin, core::FrameOrigin::kReference);
-  EXPECT_EQ(frames.tf_frame, "base_link");
-  EXPECT_FALSE(frames.broadcast_sites);
+  EXPECT_EQ(graph.tf_frame, "base_link");
+  EXPECT_FALSE(graph.broadcast_sites);
   ASSERT_EQ(frames.sites.size(), 10u);
   EXPECT_EQ(frames.sites[0].name, "base_link");
   EXPECT_EQ(frames.sites[0].position_m, Eigen::Vector3d::Zero());
-  EXPECT_EQ(frames.held_joints, (std::vector<std::string>{"rotor_0_joint", "rotor_1_joint",
-                                                          "rotor_2_joint", "rotor_3_joint"}));
+  EXPECT_EQ(graph.held_joints, (std::vector<std::string>{"rotor_0_joint", "rotor_1_joint",
+                                                         "rotor_2_joint", "rotor_3_joint"}));
 }
 
 TEST(SceneFrames, AUrdfBodyFromTextFileOrParameter) {
   const std::string xml = ReadFile(kQuadrotorPath);
   ASSERT_FALSE(xml.empty());
-  SceneBodies from_text;
   XmlRpcValue entry;
   entry["urdf"]["xml"] = xml;
-  ParseBodyEntry(entry, 0, &from_text, Params({}));
-  ExpectQuadrotor(from_text, "base_link");
+  ExpectQuadrotor({ParseBodyEntry(entry, 0, Params({}))}, "base_link");
 
   ExpectQuadrotor(Parse("[{name: quad, urdf: {file: '" + kQuadrotorPath + "'}}]"), "quad");
   ExpectQuadrotor(
@@ -249,15 +245,15 @@ TEST(SceneFrames, AUrdfBodyFromTextFileOrParameter) {
       "base_link");
 
   // frame: com is allowed; the position is then the COM's.
-  const SceneBodies com =
+  const std::vector<SceneBody> com =
       Parse("[{urdf: {file: '" + kQuadrotorPath + "'}, frame: com, position: [0, 0, 1]}]");
-  EXPECT_EQ(com.frames[0].origin, core::FrameOrigin::kCom);
-  EXPECT_EQ(com.initial_states[0].position, Eigen::Vector3d(0.0, 0.0, 1.0));
+  EXPECT_EQ(com[0].def.frames.origin, core::FrameOrigin::kCom);
+  EXPECT_EQ(com[0].def.initial_state.position, Eigen::Vector3d(0.0, 0.0, 1.0));
   // frame: reference (the default): the root link's origin.
-  const SceneBodies reference =
+  const std::vector<SceneBody> reference =
       Parse("[{urdf: {file: '" + kQuadrotorPath + "'}, position: [0, 0, 1]}]");
-  const core::BodyModel& model = reference.models[0];
-  EXPECT_TRUE(reference.initial_states[0].position.isApprox(
+  const core::BodyModel& model = reference[0].def.model;
+  EXPECT_TRUE(reference[0].def.initial_state.position.isApprox(
       Eigen::Vector3d(0.0, 0.0, 1.0) + model.reference_com(), 1e-14));
 }
 
@@ -322,8 +318,8 @@ TEST(SceneFrames, UrdfSitesAndNamesAreUniqueAcrossTheScene) {
   const std::string quad = "{urdf: {file: '" + kQuadrotorPath + "'}}";
   EXPECT_EQ(WorldErrorOf("[" + quad + ", {name: quad2, urdf: {file: '" + kQuadrotorPath + "'}}]"),
             "bodies[1] (name 'quad2'): sites[0]: name 'base_link' duplicates bodies[0]");
-  const SceneBodies scene = Parse("[" + quad + "]");  // kept: `links` refers into it
-  const std::vector<core::Site>& links = scene.frames[0].sites;
+  const std::vector<SceneBody> scene = Parse("[" + quad + "]");  // kept: `links` refers into it
+  const std::vector<core::Site>& links = scene[0].def.frames.sites;
   const auto rotor = std::find_if(links.begin(), links.end(),
                                   [](const core::Site& site) { return site.name == "rotor_0"; });
   ASSERT_NE(rotor, links.end());

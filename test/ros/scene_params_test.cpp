@@ -50,9 +50,8 @@ XmlRpcValue List(std::initializer_list<XmlRpcValue> entries) {
 
 // The SceneError message of parsing `bodies`, or "" when it parses.
 std::string ErrorOf(const XmlRpcValue& bodies) {
-  SceneBodies scene_bodies;
   try {
-    ParseBodies(bodies, &scene_bodies);
+    ParseBodies(bodies);
   } catch (const SceneError& error) {
     return error.what();
   }
@@ -68,20 +67,18 @@ TEST(SceneParams, ParticlesAndShapesBecomeModelsAndStates) {
   box["resolution"] = 2;
   box["orientation"].setSize(4);
   for (int k = 0; k < 4; ++k) box["orientation"][k] = k == 3 ? 2.0 : 0.0;  // normalised
-  SceneBodies scene_bodies;
-  ParseBodies(List({Dumbbell("bell"), box}), &scene_bodies);
-  const std::vector<core::BodyModel>& models = scene_bodies.models;
-  const std::vector<core::BodyState>& states = scene_bodies.initial_states;
-  ASSERT_EQ(models.size(), 2u);
-  ASSERT_EQ(states.size(), 2u);
-  EXPECT_EQ(models[0].name(), "bell");
-  EXPECT_EQ(models[0].mass(), 4.0);
-  EXPECT_TRUE(models[0].reference_com().isApprox(Eigen::Vector3d(0.25, 0.0, 0.0)));
-  EXPECT_TRUE(states[0].position.isApprox(Eigen::Vector3d(0.0, 0.0, 1.0)));
-  EXPECT_TRUE(states[0].linear_momentum.isApprox(Eigen::Vector3d(2.0, 0.0, 0.0)));
-  EXPECT_EQ(models[1].particle_count(), 8u);
-  EXPECT_NEAR(models[1].mass(), 2.0, 1e-15);
-  EXPECT_EQ(states[1].orientation.w(), 1.0);
+  const std::vector<SceneBody> bodies = ParseBodies(List({Dumbbell("bell"), box}));
+  ASSERT_EQ(bodies.size(), 2u);
+  const core::BodyDef& bell = bodies[0].def;
+  const core::BodyDef& crate = bodies[1].def;
+  EXPECT_EQ(bell.model.name(), "bell");
+  EXPECT_EQ(bell.model.mass(), 4.0);
+  EXPECT_TRUE(bell.model.reference_com().isApprox(Eigen::Vector3d(0.25, 0.0, 0.0)));
+  EXPECT_TRUE(bell.initial_state.position.isApprox(Eigen::Vector3d(0.0, 0.0, 1.0)));
+  EXPECT_TRUE(bell.initial_state.linear_momentum.isApprox(Eigen::Vector3d(2.0, 0.0, 0.0)));
+  EXPECT_EQ(crate.model.particle_count(), 8u);
+  EXPECT_NEAR(crate.model.mass(), 2.0, 1e-15);
+  EXPECT_EQ(crate.initial_state.orientation.w(), 1.0);
 }
 
 TEST(SceneParams, ErrorsNameTheEntryAndTheKey) {
@@ -114,11 +111,8 @@ TEST(SceneParams, ErrorsNameTheEntryAndTheKey) {
 TEST(SceneParams, AnEmptyListIsAnEmptyWorld) {
   XmlRpcValue empty;
   empty.setSize(0);
-  SceneBodies scene_bodies;
-  ParseBodies(empty, &scene_bodies);
-  EXPECT_TRUE(scene_bodies.models.empty());
-  EXPECT_TRUE(scene_bodies.initial_states.empty());
-  EXPECT_TRUE(scene_bodies.properties.empty());
+  const std::vector<SceneBody> scene_bodies = ParseBodies(empty);
+  EXPECT_TRUE(scene_bodies.empty());
 }
 
 XmlRpcValue Puck(const std::string& name) {
@@ -144,10 +138,9 @@ double RelativeError(const Eigen::MatrixXd& got, const Eigen::MatrixXd& want) {
 }
 
 TEST(SceneParams, AnInertialEntryGivesItsMassComAndTensorExactly) {
-  SceneBodies scene_bodies;
-  ParseBodies(List({Dumbbell("bell"), Puck("puck")}), &scene_bodies);
-  ASSERT_EQ(scene_bodies.models.size(), 2u);
-  const core::BodyModel& model = scene_bodies.models[1];
+  const std::vector<SceneBody> scene_bodies = ParseBodies(List({Dumbbell("bell"), Puck("puck")}));
+  ASSERT_EQ(scene_bodies.size(), 2u);
+  const core::BodyModel& model = scene_bodies[1].def.model;
   const core::RigidPart want =
       core::InertialPart(1.5, Eigen::Vector3d(0.01, -0.02, 0.03), Eigen::Vector3d(0.1, -0.2, 0.3),
                          core::InertiaEntries{0.03, 0.001, -0.002, 0.04, 0.0015, 0.05});
@@ -159,7 +152,7 @@ TEST(SceneParams, AnInertialEntryGivesItsMassComAndTensorExactly) {
   // The tensor turned by rpy (fixed axes x, y, z: R = Rz Ry Rx) keeps its trace.
   EXPECT_NEAR(model.inertia().trace(), 0.12, 1e-15);
   EXPECT_GT(std::abs(model.inertia()(0, 1) - 0.001), 1e-4);
-  EXPECT_TRUE(scene_bodies.initial_states[1].position.isApprox(Eigen::Vector3d(0.0, 0.0, 2.0)));
+  EXPECT_TRUE(scene_bodies[1].def.initial_state.position.isApprox(Eigen::Vector3d(0.0, 0.0, 2.0)));
 
   // origin is optional (0), as are xyz and rpy inside it; ints are numbers.
   XmlRpcValue plain = Puck("plain");
@@ -173,13 +166,12 @@ TEST(SceneParams, AnInertialEntryGivesItsMassComAndTensorExactly) {
   }
   point["inertial"]["origin"] = XmlRpcValue();
   point["inertial"]["origin"]["rpy"] = Vector(0.0, 0.0, 1.0);
-  SceneBodies more;
-  ParseBodies(List({plain, point}), &more);
-  EXPECT_EQ(more.models[0].mass(), 2.0);
-  EXPECT_EQ(more.models[0].reference_com(), Eigen::Vector3d::Zero());
-  EXPECT_EQ(more.models[0].inertia()(0, 1), 0.0);
-  EXPECT_EQ(more.models[0].inertia()(2, 2), 0.05);
-  EXPECT_EQ(more.models[1].rank(), 0);
+  const std::vector<SceneBody> more = ParseBodies(List({plain, point}));
+  EXPECT_EQ(more[0].def.model.mass(), 2.0);
+  EXPECT_EQ(more[0].def.model.reference_com(), Eigen::Vector3d::Zero());
+  EXPECT_EQ(more[0].def.model.inertia()(0, 1), 0.0);
+  EXPECT_EQ(more[0].def.model.inertia()(2, 2), 0.05);
+  EXPECT_EQ(more[1].def.model.rank(), 0);
 }
 
 TEST(SceneParams, InertialErrorsNameTheEntryAndTheKeyPath) {
@@ -294,14 +286,13 @@ TEST(SceneParams, GravityScaleAndDampingAreReadAndChecked) {
   floating["gravity_scale"] = 0;
   floating["linear_damping"] = 0.5;
   floating["angular_damping"] = 2;
-  SceneBodies scene_bodies;
-  ParseBodies(List({Dumbbell("plain"), floating}), &scene_bodies);
-  ASSERT_EQ(scene_bodies.properties.size(), 2u);
-  EXPECT_EQ(scene_bodies.properties[0].gravity_scale, 1.0);
-  EXPECT_EQ(scene_bodies.properties[0].linear_damping_per_s, 0.0);
-  EXPECT_EQ(scene_bodies.properties[1].gravity_scale, 0.0);
-  EXPECT_EQ(scene_bodies.properties[1].linear_damping_per_s, 0.5);
-  EXPECT_EQ(scene_bodies.properties[1].angular_damping_per_s, 2.0);
+  const std::vector<SceneBody> scene_bodies = ParseBodies(List({Dumbbell("plain"), floating}));
+  ASSERT_EQ(scene_bodies.size(), 2u);
+  EXPECT_EQ(scene_bodies[0].def.properties.gravity_scale, 1.0);
+  EXPECT_EQ(scene_bodies[0].def.properties.linear_damping_per_s, 0.0);
+  EXPECT_EQ(scene_bodies[1].def.properties.gravity_scale, 0.0);
+  EXPECT_EQ(scene_bodies[1].def.properties.linear_damping_per_s, 0.5);
+  EXPECT_EQ(scene_bodies[1].def.properties.angular_damping_per_s, 2.0);
 
   XmlRpcValue negative = Dumbbell("negative");
   negative["linear_damping"] = -1.0;
@@ -319,11 +310,10 @@ TEST(SceneParams, GravityScaleAndDampingAreReadAndChecked) {
 }
 
 TEST(SceneParams, NamesAndStatesAreCheckedByTheWorldBuiltFromTheScene) {
-  SceneBodies scene_bodies;
-  ParseBodies(List({Dumbbell("twin"), Dumbbell("twin")}), &scene_bodies);
+  const std::vector<SceneBody> scene_bodies =
+      ParseBodies(List({Dumbbell("twin"), Dumbbell("twin")}));
   try {
-    core::World(scene_bodies.models, scene_bodies.initial_states, core::WorldDef{},
-                scene_bodies.properties);
+    core::World(core::WorldDef{}, CoreDefs(scene_bodies));
     FAIL() << "duplicate names accepted";
   } catch (const std::invalid_argument& error) {
     EXPECT_STREQ(error.what(), "bodies[1] (name 'twin'): name duplicates bodies[0]");

@@ -19,14 +19,13 @@ TEST(StaticFrames, ASiteIsPlacedFromItsBodysFrameOrigin) {
   com.sites = {{"tip", {0.5, 0.0, 0.0}, turned}, {"base", {0.0, 0.1, 0.0}, identity}};
   core::BodyFrames reference;
   reference.origin = core::FrameOrigin::kReference;
-  reference.tf_frame = "base_link";
   reference.sites = {{"mount", {0.1, 0.2, 0.3}, identity}};
-  const core::World world({Dumbbell("rod"), Dumbbell("robot"), Dumbbell("bare")},
-                          std::vector<core::BodyState>(3), core::WorldDef{}, {},
-                          {com, reference, core::BodyFrames{}});
+  const core::World world(core::WorldDef{}, {core::BodyDef(Dumbbell("rod"), {}, {}, com),
+                                             core::BodyDef(Dumbbell("robot"), {}, {}, reference),
+                                             core::BodyDef(Dumbbell("bare"))});
 
   const std::vector<geometry_msgs::TransformStamped> rod =
-      SiteTransforms(world, world.id(0), "/sim/");
+      SiteTransforms(world, world.id(0), "rod", "/sim/");
   ASSERT_EQ(rod.size(), 2u);
   EXPECT_EQ(rod[0].header.frame_id, "sim/rod");
   EXPECT_EQ(rod[0].header.stamp, ros::Time());
@@ -40,7 +39,8 @@ TEST(StaticFrames, ASiteIsPlacedFromItsBodysFrameOrigin) {
   EXPECT_NEAR(rod[1].transform.translation.x, -0.3, 1e-15);
   EXPECT_EQ(rod[1].transform.translation.y, 0.1);
 
-  const std::vector<geometry_msgs::TransformStamped> robot = SiteTransforms(world, world.id(1), "");
+  const std::vector<geometry_msgs::TransformStamped> robot =
+      SiteTransforms(world, world.id(1), "base_link", "");
   ASSERT_EQ(robot.size(), 1u);
   EXPECT_EQ(robot[0].header.frame_id, "base_link");
   EXPECT_EQ(robot[0].child_frame_id, "mount");
@@ -49,7 +49,7 @@ TEST(StaticFrames, ASiteIsPlacedFromItsBodysFrameOrigin) {
   EXPECT_EQ(robot[0].transform.translation.z, 0.3);
   EXPECT_EQ(robot[0].transform.rotation.w, 1.0);
 
-  EXPECT_TRUE(SiteTransforms(world, world.id(2), "").empty());
+  EXPECT_TRUE(SiteTransforms(world, world.id(2), "bare", "").empty());
 }
 
 }  // namespace

@@ -54,10 +54,12 @@ core::World& ArmAndBall() {
     const core::BodyModel arm = Arm();
     const core::BodyModel ball(
         "ball", {{1.0, {0.1, 0, 0}}, {1.0, {-0.1, 0, 0}}, {1.0, {0, 0.1, 0}}, {1.0, {0, 0, 0.1}}});
-    return core::World({arm, ball},
-                       {core::StateFromTwist(arm, {1, 2, 3}, kArmOrientation, {0, 0, 0}, {0, 0, 0}),
-                        core::BodyState{}},
-                       core::WorldDef{}, {}, {arm_frames, ball_frames});
+    return core::World(
+        core::WorldDef{},
+        {core::BodyDef(arm,
+                       core::StateFromTwist(arm, {1, 2, 3}, kArmOrientation, {0, 0, 0}, {0, 0, 0}),
+                       {}, arm_frames),
+         core::BodyDef(ball, {}, {}, ball_frames)});
   }();
   return world;
 }
@@ -198,7 +200,7 @@ TEST(WrenchFrame, TheUnknownFrameHintNamesTheBodysSites) {
   EXPECT_EQ(UnknownFrameMessage("hook", "arm", Frames()),
             "unknown frame_id 'hook' for body 'arm' (use '', 'world', 'sim/arm' or a site of it: "
             "'sim/tip', 'sim/arm')");
-  static const core::World no_sites({Arm()}, {core::BodyState{}}, core::WorldDef{});
+  static const core::World no_sites(core::WorldDef{}, {core::BodyDef(Arm())});
   EXPECT_EQ(UnknownFrameMessage("x", "arm", MakeWrenchFrames(no_sites, "world", "sim/")),
             "unknown frame_id 'x' for body 'arm' (use '', 'world' or 'sim/arm')");
   core::BodyFrames many;
@@ -207,7 +209,7 @@ TEST(WrenchFrame, TheUnknownFrameHintNamesTheBodysSites) {
     site.name = name;
     many.sites.push_back(site);
   }
-  static const core::World robot({Arm()}, {core::BodyState{}}, core::WorldDef{}, {}, {many});
+  static const core::World robot(core::WorldDef{}, {core::BodyDef(Arm(), {}, {}, many)});
   EXPECT_EQ(UnknownFrameMessage("x", "arm", MakeWrenchFrames(robot, "world", "")),
             "unknown frame_id 'x' for body 'arm' (use '', 'world', 'arm' or a site of it: 'a', "
             "'b', 'c', ... (5 sites))");

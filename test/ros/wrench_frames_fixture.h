@@ -12,9 +12,10 @@ namespace rigid_body_sim::test {
 
 inline const core::World& BoxAndRod() {
   static const core::World world(
-      {core::BodyModel("box", core::MakeBox(1.0, {0.2, 0.3, 0.4}, 2)),
-       core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0}}, {1.0, {0, 0, 0.5}}})},
-      std::vector<core::BodyState>(2), core::WorldDef{});
+      core::WorldDef{},
+      {core::BodyDef(core::BodyModel("box", core::MakeBox(1.0, {0.2, 0.3, 0.4}, 2))),
+       core::BodyDef(
+           core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0}}, {1.0, {0, 0, 0.5}}}))});
   return world;
 }
 

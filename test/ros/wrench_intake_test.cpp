@@ -46,10 +46,11 @@ TEST(WrenchIntake, FrameIdChoosesTheAxes) {
 
 TEST(WrenchIntake, ABodyWithoutParticlesTakesNoParticleWrench) {
   // A body given by its inertia tensor: unknown_particle, whatever the index.
-  static const core::World world({core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0.5}}}),
-                                  core::BodyModel("puck", 1.5, Eigen::Vector3d::Zero(),
-                                                  Eigen::Vector3d(1, 1, 2).asDiagonal())},
-                                 std::vector<core::BodyState>(2), core::WorldDef{});
+  static const core::World world(
+      core::WorldDef{},
+      {core::BodyDef(core::BodyModel("rod", {{1.0, {0, 0, -0.5}}, {1.0, {0, 0, 0.5}}})),
+       core::BodyDef(core::BodyModel("puck", 1.5, Eigen::Vector3d::Zero(),
+                                     Eigen::Vector3d(1, 1, 2).asDiagonal()))});
   const WrenchFrames frames = MakeWrenchFrames(world, "world", "");
   const ros::Time start(1700000000, 0);
   const CheckedWrench checked = CheckParticleWrench(Message("puck", 0, ""), frames, start, 0.0);

@@ -35,26 +35,22 @@ TEST(YamlValue, AnEntryParsesAsTheSceneWouldParseIt) {
       "  - {mass: 0.5, position: [0.2, 0.0, 0.0]}\n"
       "position: [0, 0, 1]\n"
       "angular_damping: 0.5\n");
-  SceneBodies bodies;
-  ParseBodyEntry(entry, 3, &bodies);
-  ASSERT_EQ(bodies.models.size(), 1u);
-  EXPECT_EQ(bodies.models[0].name(), "ball");
-  EXPECT_EQ(bodies.models[0].mass(), 1.5);
-  EXPECT_EQ(bodies.initial_states[0].position.z(), 1.0);
-  EXPECT_EQ(bodies.properties[0].angular_damping_per_s, 0.5);
+  const core::BodyDef def = ParseBodyEntry(entry, 3).def;
+  EXPECT_EQ(def.model.name(), "ball");
+  EXPECT_EQ(def.model.mass(), 1.5);
+  EXPECT_EQ(def.initial_state.position.z(), 1.0);
+  EXPECT_EQ(def.properties.angular_damping_per_s, 0.5);
 }
 
 TEST(YamlValue, MalformedTextAndBadEntriesAreSceneErrors) {
   EXPECT_THROW(XmlRpcFromYaml("{name: [unclosed"), SceneError);
-  SceneBodies bodies;
   try {
-    ParseBodyEntry(XmlRpcFromYaml("{name: ball, shape: sphere, mass: 1, radius: -1}"), 7, &bodies);
+    ParseBodyEntry(XmlRpcFromYaml("{name: ball, shape: sphere, mass: 1, radius: -1}"), 7);
     FAIL() << "a negative radius was accepted";
   } catch (const SceneError& error) {
     EXPECT_STREQ(error.what(), "bodies[7] (name 'ball'): radius must be > 0, got -1");
   }
-  EXPECT_TRUE(bodies.models.empty());
-  EXPECT_THROW(ParseBodyEntry(XmlRpcFromYaml("just text"), 0, &bodies), SceneError);
+  EXPECT_THROW(ParseBodyEntry(XmlRpcFromYaml("just text"), 0), SceneError);
 }
 
 // Bytes the allocator has handed out and not had back.
@@ -95,10 +91,8 @@ TEST(YamlValue, AliasesExpandToCopiesOfTheirAnchor) {
 TEST(YamlValue, ARepeatedKeyKeepsItsLastValueAndAMergeKeyIsAPlainKey) {
   XmlRpcValue value = XmlRpcFromYaml("{a: 1, a: [2, 3]}");
   EXPECT_EQ(value["a"].size(), 2);
-  SceneBodies bodies;
   try {
-    ParseBodyEntry(XmlRpcFromYaml("{name: &n x, shape: sphere, mass: 1, radius: 1, <<: *n}"), 0,
-                   &bodies);
+    ParseBodyEntry(XmlRpcFromYaml("{name: &n x, shape: sphere, mass: 1, radius: 1, <<: *n}"), 0);
     FAIL() << "a merge key was accepted";
   } catch (const SceneError& error) {
     EXPECT_NE(std::string(error.what()).find("unknown key"), std::string::npos) << error.what();
@@ -106,11 +100,10 @@ TEST(YamlValue, ARepeatedKeyKeepsItsLastValueAndAMergeKeyIsAPlainKey) {
 }
 
 TEST(YamlValue, HugeNumbersAreNoNumbers) {
-  SceneBodies bodies;
   for (const char* mass : {"1e999999", "-1e400", "99999999999999999999999999e99999"}) {
     const std::string entry =
         std::string("{name: b, particles: [{mass: ") + mass + ", position: [0, 0, 0]}]}";
-    EXPECT_THROW(ParseBodyEntry(XmlRpcFromYaml(entry), 0, &bodies), SceneError) << mass;
+    EXPECT_THROW(ParseBodyEntry(XmlRpcFromYaml(entry), 0), SceneError) << mass;
   }
 }
 
@@ -177,10 +170,7 @@ TEST(YamlValue, TheLargestBodyFits) {
       "{name: big, particles: " +
       FlowSequence("{mass: 0.001, position: [0.123456789, -0.5, 12.25]}", kMaxParticlesPerBody) +
       "}";
-  SceneBodies bodies;
-  ParseBodyEntry(XmlRpcFromYaml(text), 0, &bodies);
-  ASSERT_EQ(bodies.models.size(), 1u);
-  EXPECT_NEAR(bodies.models[0].mass(), 100.0, 1e-9);
+  EXPECT_NEAR(ParseBodyEntry(XmlRpcFromYaml(text), 0).def.model.mass(), 100.0, 1e-9);
 }
 
 }  // namespace

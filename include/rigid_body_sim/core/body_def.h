@@ -1,6 +1,7 @@
-// One body as a scene entry or a ~spawn_body request defines it, before it
-// joins a World. A new key of a body entry goes here, in CheckBodyDef
-// (validate.h) and in the reader (src/ros/scene_bodies.cpp).
+// One body as the physics knows it before it joins a World: what a scene
+// entry defines besides the names the ROS graph gives it (SceneBody,
+// rigid_body_sim/ros/scene_body.h). A new physical key of a body entry goes
+// here, in CheckBodyDef (validate.h) and in its reader (src/ros/scene_*.cpp).
 #pragma once
 
 #include <utility>

@@ -1,7 +1,6 @@
 // The named frames of a body besides its COM frame: which point its published
-// frame is, the sites fixed in it, and the names a robot description gives it
-// (doc/node.md, "Sites and frames"). Cold data: read by the outputs and by
-// wrench intake, never by a step.
+// frame is and the sites fixed in it (doc/node.md, "Sites and frames"). Cold
+// data: read by the outputs and by wrench intake, never by a step.
 #pragma once
 
 #include <string>
@@ -30,22 +29,8 @@ enum class FrameOrigin { kCom, kReference };
 
 struct BodyFrames {
   FrameOrigin origin = FrameOrigin::kCom;
-  // The TF frame's name before tf_prefix; "" is the body's name. A URDF body's
-  // is its root link's.
-  std::string tf_frame;
   std::vector<Site> sites;
-  // Whether the node puts the sites on /tf_static (a URDF body's links are
-  // robot_state_publisher's to broadcast).
-  bool broadcast_sites = true;
-  // Joints held at position 0 inside the body (a URDF body's non-fixed
-  // joints), published so that robot_state_publisher draws its links.
-  std::vector<std::string> held_joints;
 };
-
-// The TF frame name of a body named `body_name` (before tf_prefix).
-inline const std::string& TfFrameName(const BodyFrames& frames, const std::string& body_name) {
-  return frames.tf_frame.empty() ? body_name : frames.tf_frame;
-}
 
 // The point a body's frame origin is at, as an offset from the COM in body
 // axes [m]: 0 for kCom, −x̄_CM for kReference.

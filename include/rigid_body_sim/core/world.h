@@ -43,14 +43,11 @@ class BodyListener {
 
 class World {
  public:
-  // Throws std::invalid_argument on `options` that CheckWorldDef rejects
-  // (validate.h: the setters' checks among them), a states/models (or
-  // non-empty properties) size mismatch, or a body that CheckBodyDef rejects
-  // ("bodies[i] (name 'n'): ..."). Empty `properties` or `frames` gives every
-  // body the defaults.
-  World(std::vector<BodyModel> models, std::vector<BodyState> initial_states,
-        const WorldDef& options, std::vector<BodyProperties> properties = {},
-        std::vector<BodyFrames> frames = {});
+  // The bodies of `bodies`, in order, each added as AddBody adds it. Throws
+  // std::invalid_argument on a `def` that CheckWorldDef rejects (validate.h:
+  // the setters' checks among them) or a body that CheckBodyDef rejects
+  // ("bodies[i] (name 'n'): ...").
+  explicit World(const WorldDef& def, std::vector<BodyDef> bodies = {});
 
   // Bodies are read by index (scene order; an index moves down when a body
   // before it is removed) or by BodyId (stable; a stale id throws

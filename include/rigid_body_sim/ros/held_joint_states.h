@@ -1,5 +1,5 @@
 // ~joint_states (doc/node.md, "Frames of a body"): the joints held at 0 inside
-// the bodies (core::BodyFrames::held_joints, a URDF body's non-fixed joints),
+// the bodies (BodyGraphNames::held_joints, a URDF body's non-fixed joints),
 // so that a robot_state_publisher on the same URDF draws the links. Owned by
 // StatePublisher, published in its cycle with its stamp.
 #pragma once
@@ -11,7 +11,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 
-#include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/core/body_id.h"
 #include "rigid_body_sim/ros/body_topics.h"
 
 namespace rigid_body_sim {
@@ -22,7 +22,8 @@ class HeldJointStates {
   // hold joints.
   explicit HeldJointStates(ros::NodeHandle private_nh);
 
-  void OnBodyAdded(const core::World& world, core::BodyId id);
+  // Body `id` holds `joints` (none: nothing to publish for it).
+  void OnBodyAdded(core::BodyId id, const std::vector<std::string>& joints);
   void OnBodyRemoved(core::BodyId id);
 
   // Every held joint of every body, in body order, at position 0 and velocity

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include <ros/node_handle.h>
 
@@ -17,7 +18,7 @@ namespace rigid_body_sim {
 
 struct Scene {
   NodeSettings settings;
-  SceneBodies bodies;  // this shard's, in scene order
+  std::vector<SceneBody> bodies;  // this shard's, in scene order
   // With shards: every other shard's body, by name → the shard that owns it.
   std::unordered_map<std::string, std::uint32_t> other_shard_bodies;
 };

@@ -8,15 +8,18 @@
 
 #include "rigid_body_sim/core/body_frames.h"
 #include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/ros/scene_body.h"
 #include "rigid_body_sim/ros/urdf_body.h"
 
 namespace rigid_body_sim {
 
 struct UrdfEntry {
   core::BodyModel model;
-  // The root link's TF frame, every link a site (not broadcast: that is
-  // robot_state_publisher's), the non-fixed joints held, origin kReference.
+  // Every link a site, origin kReference.
   core::BodyFrames frames;
+  // The root link's TF frame, the sites not broadcast (that is
+  // robot_state_publisher's), the non-fixed joints held.
+  BodyGraphNames graph;
 };
 
 // The body of the `urdf` value `urdf`, named `name` ("" = the root link's):

@@ -69,7 +69,7 @@ class ServiceFront {
   // stepping thread (AddSpawnedBody).
   bool OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response& response);
   // On the stepping thread: whether the world took the body, and the answer.
-  bool AddSpawnedBody(SceneBodies entry, std::string* message);
+  bool AddSpawnedBody(SceneBody body, std::string* message);
   bool OnDeleteBody(DeleteBody::Request& request, DeleteBody::Response& response);
 
   LoopControl& loop_;

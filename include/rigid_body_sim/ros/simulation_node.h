@@ -24,6 +24,7 @@
 
 #include "rigid_body_sim/core/step_pacer.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_graph_table.h"
 #include "rigid_body_sim/ros/lockstep_driver.h"
 #include "rigid_body_sim/ros/loop_control.h"
 #include "rigid_body_sim/ros/node_diagnostics.h"
@@ -71,6 +72,7 @@ class SimulationNode : public LoopControl {
   void ApplyRuntimeSettings(const NodeSettings& next) override;  // runtime_settings.cpp
 
   NodeSettings settings_;  // the runtime keys change with ApplyRuntimeSettings
+  BodyGraphTable graph_;   // before world_: its listeners read a body's entry
   core::World world_;
   StepLattice lattice_;
   core::StepPacer pacer_;

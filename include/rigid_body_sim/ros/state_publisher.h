@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_graph_table.h"
 #include "rigid_body_sim/ros/body_outputs.h"
 #include "rigid_body_sim/ros/body_topics.h"
 #include "rigid_body_sim/ros/held_joint_states.h"
@@ -24,9 +25,10 @@ namespace rigid_body_sim {
 class StatePublisher : public core::BodyListener {
  public:
   // Advertises the shared topics now and queues each body's own
-  // (BodyTopics); messages on ~<body>/wrench go to `on_body_wrench`.
+  // (BodyTopics); messages on ~<body>/wrench go to `on_body_wrench`. `graph`
+  // holds the graph names of the world's bodies and must outlive it.
   StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings, const core::World& world,
-                 BodyTopics::WrenchCallback on_body_wrench);
+                 const BodyGraphTable& graph, BodyTopics::WrenchCallback on_body_wrench);
 
   void Publish(const core::World& world, const ros::Time& stamp);
   // From the next Publish on.
@@ -58,6 +60,7 @@ class StatePublisher : public core::BodyListener {
   const double particle_marker_diameter_m_;
   const std::string tf_prefix_;
   const core::ImuNoise imu_noise_;
+  const BodyGraphTable& graph_;
   struct PerBody {
     BodyFrame frame;  // its TF frame and origin
     // Its ~particles marker id: its scene index, then one more per spawn, so

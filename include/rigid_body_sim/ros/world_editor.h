@@ -2,7 +2,8 @@
 // steps (ServiceFront), made here: each change of states or wrenches is told,
 // as a WorldEvent, to the one event sink (NodeDiagnostics), so that no
 // handler can forget it. A body added or removed reaches every part that
-// keeps per-body state through the world itself (core::BodyListener).
+// keeps per-body state through the world itself (core::BodyListener), its
+// graph names through the BodyGraphTable, which holds them while it lives.
 //
 // Stepping thread only, except body_count().
 #pragma once
@@ -12,7 +13,8 @@
 #include <functional>
 
 #include "rigid_body_sim/core/world.h"
-#include "rigid_body_sim/ros/scene_params.h"
+#include "rigid_body_sim/ros/body_graph_table.h"
+#include "rigid_body_sim/ros/scene_body.h"
 #include "rigid_body_sim/ros/world_event.h"
 
 namespace rigid_body_sim {
@@ -21,8 +23,8 @@ class WorldEditor {
  public:
   using EventSink = std::function<void(const WorldEvent&)>;
 
-  // `world` must outlive it.
-  WorldEditor(core::World* world, EventSink on_event);
+  // `world` and `graph` (the graph names of the world's bodies) must outlive it.
+  WorldEditor(core::World* world, BodyGraphTable* graph, EventSink on_event);
 
   const core::World& world() const { return world_; }
   // The world's body count, for the request lane's thread.
@@ -39,16 +41,17 @@ class WorldEditor {
   void SetBodyState(core::BodyId body, const core::BodyState& state);
   void Reset();
 
-  // The one body of `entry` appended to the world (and so to every part that
-  // listens to it); returns its index. Throws what the world throws for a
-  // body it refuses, before anything has changed.
-  std::size_t AddBody(SceneBodies entry);
+  // `body` appended to the world (and so to every part that listens to it),
+  // its graph names first; returns its index. Throws what the world or the
+  // graph table throws for a body they refuse, before anything has changed.
+  std::size_t AddBody(SceneBody body);
   void RemoveBody(core::BodyId body);
 
  private:
   void Notify(WorldEvent::Kind kind, core::BodyId body = {}) { on_event_(WorldEvent{kind, body}); }
 
   core::World& world_;
+  BodyGraphTable& graph_;
   const EventSink on_event_;
   // Written on the stepping thread after each add or remove.
   std::atomic<std::size_t> body_count_;
