@@ -1,17 +1,43 @@
 #include "rigid_body_sim/ros/body_graph_table.h"
 
+#include <stdexcept>
 #include <utility>
+
+#include <ros/names.h>
 
 namespace rigid_body_sim {
 
-BodyGraphTable::BodyGraphTable(const std::vector<SceneBody>& bodies) {
-  for (const SceneBody& body : bodies) Add(body.def.model.name(), body.graph);
+BodyGraphTable::BodyGraphTable(NameResolver resolve) : resolve_(std::move(resolve)) {}
+
+BodyGraphTable::BodyGraphTable(const std::vector<SceneBody>& bodies, NameResolver resolve)
+    : resolve_(std::move(resolve)) {
+  for (std::size_t i = 0; i < bodies.size(); ++i) {
+    Add(i, bodies[i].def.model.name(), bodies[i].graph);
+  }
 }
 
-bool BodyGraphTable::Add(const std::string& body, BodyGraphNames names) {
-  return names_.emplace(body, std::move(names)).second;
+bool BodyGraphTable::Add(std::size_t index, const std::string& body, BodyGraphNames names) {
+  if (entries_.count(body) > 0) return false;
+  const std::string& given = names.topic_namespace;
+  std::string topic_namespace = resolve_(given.empty() ? "~" + body : given);
+  const auto taken = namespaces_.find(topic_namespace);
+  if (taken != namespaces_.end()) {
+    throw std::invalid_argument("bodies[" + std::to_string(index) + "] (name '" + body +
+                                "'): namespace '" + topic_namespace +
+                                "' is the topic namespace of body '" + taken->second + "'");
+  }
+  namespaces_.emplace(topic_namespace, body);
+  entries_.emplace(body, Entry{std::move(names), std::move(topic_namespace)});
+  return true;
 }
 
-void BodyGraphTable::Remove(const std::string& body) { names_.erase(body); }
+void BodyGraphTable::Remove(const std::string& body) {
+  const auto entry = entries_.find(body);
+  if (entry == entries_.end()) return;
+  namespaces_.erase(entry->second.topic_namespace);
+  entries_.erase(entry);
+}
+
+std::string ResolveGraphName(const std::string& name) { return ros::names::resolve(name); }
 
 }  // namespace rigid_body_sim

@@ -33,8 +33,8 @@ void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic,
 
 }  // namespace
 
-BodyTopics::BodyTopics(const ros::NodeHandle& private_nh, bool enabled, WrenchCallback on_wrench)
-    : private_nh_(private_nh), enabled_(enabled), on_wrench_(std::move(on_wrench)) {
+BodyTopics::BodyTopics(bool enabled, WrenchCallback on_wrench)
+    : enabled_(enabled), on_wrench_(std::move(on_wrench)) {
   if (enabled_) worker_ = std::thread(&BodyTopics::Work, this);
 }
 
@@ -47,9 +47,10 @@ BodyTopics::~BodyTopics() {
   if (worker_.joinable()) worker_.join();
 }
 
-void BodyTopics::Add(core::BodyId id, const std::string& body) {
+void BodyTopics::Add(core::BodyId id, const std::string& body, const std::string& topic_namespace) {
   auto topics = std::make_shared<Topics>();
   topics->body = body;
+  topics->topic_namespace = topic_namespace;
   bodies_.Insert(id, topics);
   ++body_count_;
   if (enabled_) Push({std::move(topics), true});
@@ -102,21 +103,21 @@ void BodyTopics::Work() {
 void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
   // A node handle keeps a weak_ptr to every publisher and subscriber made
   // through it until it is destroyed, and a weak_ptr keeps its make_shared
-  // block allocated: made through private_nh_, the topics of every body ever
-  // advertised would stay in memory. This copy lets them go on return; the
-  // publishers and the subscriber hold node handles of their own.
-  ros::NodeHandle nh(private_nh_);
+  // block allocated: made through a node handle kept for every body, the
+  // topics of every body ever advertised would stay in memory. This one lets
+  // them go on return; the publishers and the subscriber hold node handles of
+  // their own.
+  ros::NodeHandle nh(topics->topic_namespace);
   const std::string& body = topics->body;
-  AdvertiseCounted<geometry_msgs::PoseStamped>(nh, body + "/pose", topics, &topics->pose);
-  AdvertiseCounted<geometry_msgs::TwistStamped>(nh, body + "/twist", topics, &topics->twist);
-  AdvertiseCounted<nav_msgs::Odometry>(nh, body + "/odom", topics, &topics->odom);
-  AdvertiseCounted<sensor_msgs::Imu>(nh, body + "/imu", topics, &topics->imu,
-                                     &step_record_subscribers_);
+  AdvertiseCounted<geometry_msgs::PoseStamped>(nh, "pose", topics, &topics->pose);
+  AdvertiseCounted<geometry_msgs::TwistStamped>(nh, "twist", topics, &topics->twist);
+  AdvertiseCounted<nav_msgs::Odometry>(nh, "odom", topics, &topics->odom);
+  AdvertiseCounted<sensor_msgs::Imu>(nh, "imu", topics, &topics->imu, &step_record_subscribers_);
   AdvertiseCounted<geometry_msgs::WrenchStamped>(
-      nh, body + "/applied_wrench", topics, &topics->applied_wrench, &step_record_subscribers_);
+      nh, "applied_wrench", topics, &topics->applied_wrench, &step_record_subscribers_);
   const WrenchCallback& on_wrench = on_wrench_;
   topics->wrench = nh.subscribe<geometry_msgs::WrenchStamped>(
-      body + "/wrench", kWrenchQueueSize,
+      "wrench", kWrenchQueueSize,
       [&on_wrench, body](const geometry_msgs::WrenchStamped::ConstPtr& msg) {
         on_wrench(body, *msg);
       },

@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include <ros/names.h>
+
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
@@ -99,7 +101,8 @@ std::vector<core::Particle> ReadShape(const XmlRpcValue& body, const std::string
 void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) {
   static const std::set<std::string> kCommonKeys = {
       "name",          "position",       "orientation",     "linear_velocity", "angular_velocity",
-      "gravity_scale", "linear_damping", "angular_damping", "frame",           "sites"};
+      "gravity_scale", "linear_damping", "angular_damping", "frame",           "sites",
+      "namespace"};
   for (const auto& member : body) {
     if (kCommonKeys.count(member.first) || kind_keys.count(member.first)) continue;
     std::string known;
@@ -138,6 +141,20 @@ void CheckModelKeys(const XmlRpcValue& body) {
         "needs exactly one of particles (a list), shape (box, sphere, cylinder), inertial "
         "(mass, origin, inertia) or urdf (xml, file or param)");
   }
+}
+
+// A `namespace` value: a ROS graph name, checked as roscpp checks one.
+std::string ReadNamespace(const XmlRpcValue& value) {
+  if (value.getType() != XmlRpcValue::TypeString ||
+      static_cast<const std::string&>(value).empty()) {
+    throw SceneError("namespace must be a non-empty ROS graph name, got " + Describe(value));
+  }
+  const std::string& name = value;
+  std::string error;
+  if (!ros::names::validate(name, error)) {
+    throw SceneError("namespace '" + name + "' is not a ROS graph name: " + error);
+  }
+  return name;
 }
 
 // The entry's `urdf` body, if it has the key, read after the entry's other
@@ -182,6 +199,7 @@ SceneBody ReadBody(const XmlRpcValue& body, const std::string& name,
   }
   frames.origin = ReadFrameOrigin(body, frames.origin);
   if (body.hasMember("sites")) frames.sites = ReadSites(body["sites"], name);
+  if (body.hasMember("namespace")) graph.topic_namespace = ReadNamespace(body["namespace"]);
   const Eigen::Vector3d position = ReadOptionalVector3(body, "position");
   const Eigen::Quaterniond orientation =
       body.hasMember("orientation") ? ReadUnitQuaternion(body["orientation"], "orientation")

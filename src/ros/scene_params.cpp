@@ -1,6 +1,7 @@
 #include "rigid_body_sim/ros/scene_params.h"
 
 #include "rigid_body_sim/core/validate.h"
+#include "rigid_body_sim/ros/body_graph_table.h"
 #include "rigid_body_sim/ros/imu_noise_params.h"
 
 namespace rigid_body_sim {
@@ -16,6 +17,7 @@ Scene LoadScene(const ros::NodeHandle& private_nh) {
     // Every shard checks the whole scene (names, states), with its indices,
     // as a World of the default WorldDef would.
     core::CheckBodyDefs(CoreDefs(scene.bodies), core::WorldDef());
+    const BodyGraphTable whole_scene(scene.bodies, ResolveGraphName);  // topic namespaces
     KeepShard(scene.settings.shard, &scene);
   }
   return scene;

@@ -41,7 +41,7 @@ std::vector<core::BodyDef> TakeCoreDefs(std::vector<SceneBody>* bodies) {
 
 SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
     : settings_(scene.settings),
-      graph_(scene.bodies),
+      graph_(scene.bodies, ResolveGraphName),
       world_(MakeWorldDef(settings_), TakeCoreDefs(&scene.bodies)),
       lattice_(settings_),
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),

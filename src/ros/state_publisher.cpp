@@ -53,7 +53,7 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
       tf_prefix_(settings.tf_prefix),
       imu_noise_(settings.imu_noise),
       graph_(graph),
-      body_topics_(private_nh, settings.per_body_topics, std::move(on_body_wrench)),
+      body_topics_(settings.per_body_topics, std::move(on_body_wrench)),
       joint_states_(private_nh) {
   ros::NodeHandle root;
   Advertise<tf2_msgs::TFMessage>(root, "/tf", kTfQueueSize, &tf_);
@@ -67,7 +67,7 @@ void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
   const std::string& name = world.model(id).name();
   per_body_.Insert(id, {{BodyFrameId(tf_prefix_, graph_.TfFrame(name)), world.frames(id).origin},
                         next_marker_id_++});
-  body_topics_.Add(id, name);
+  body_topics_.Add(id, name, graph_.TopicNamespace(name));
   joint_states_.OnBodyAdded(id, graph_.at(name).held_joints);
 }
 

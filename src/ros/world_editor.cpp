@@ -46,7 +46,7 @@ void WorldEditor::Reset() {
 
 std::size_t WorldEditor::AddBody(SceneBody body) {
   const std::string name = body.def.model.name();
-  const bool named_anew = graph_.Add(name, std::move(body.graph));
+  const bool named_anew = graph_.Add(world_.size(), name, std::move(body.graph));
   try {
     world_.AddBody(std::move(body.def));
   } catch (...) {

@@ -13,7 +13,9 @@ body_frames.test):
   reference origin; a spawned body's sites join them and leave with it;
 - `quad` (from config/quadrotor.urdf): its TF frame is its root link,
   sim/base_link; its links are not on /tf_static; ~joint_states names its
-  four rotor joints at 0, stamped as ~bodies.
+  four rotor joints at 0, stamped as ~bodies; with `namespace: /uav1` its
+  topics are /uav1/pose, /uav1/odom, ... and /uav1/wrench pushes it; a
+  spawned body may not take that namespace, and takes a free one.
 """
 import math
 import threading
@@ -70,13 +72,17 @@ class BodyFrames(unittest.TestCase):
         rospy.init_node('body_frames_test')
         cls.lock = threading.Lock()
         cls.messages = {name: [] for name in (
-            'bodies', 'tf', 'tf_static', 'pose', 'odom', 'imu', 'wrench', 'joints')}
+            'bodies', 'tf', 'tf_static', 'pose', 'odom', 'imu', 'wrench', 'joints', 'uav1_odom',
+            'uav1_applied', 'uav2_pose')}
         for name, topic, msg_type in (
                 ('bodies', NODE + '/bodies', BodyStateArray), ('tf', '/tf', TFMessage),
                 ('tf_static', '/tf_static', TFMessage), ('pose', NODE + '/arm/pose', PoseStamped),
                 ('odom', NODE + '/arm/odom', Odometry), ('imu', NODE + '/arm/imu', Imu),
                 ('wrench', NODE + '/arm/applied_wrench', WrenchStamped),
-                ('joints', NODE + '/joint_states', JointState)):
+                ('joints', NODE + '/joint_states', JointState),
+                ('uav1_odom', '/uav1/odom', Odometry),
+                ('uav1_applied', '/uav1/applied_wrench', WrenchStamped),
+                ('uav2_pose', '/uav2/pose', PoseStamped)):
             rospy.Subscriber(topic, msg_type, cls.on(cls.messages[name]), queue_size=1000)
         cls.sim = SimClient(NODE)
 
@@ -194,6 +200,30 @@ class BodyFrames(unittest.TestCase):
             'tf_static', lambda m: 'sim/tool_grip' not in self.static_frames(m),
             'the set without it', since=sent))
         self.assertEqual(sorted(static), ['sim/arm_mount', 'sim/arm_tip'])
+
+    def test_topics_in_the_bodys_namespace(self):
+        self.sim.resume()  # the other test leaves it paused
+        odom = self.wait_for('uav1_odom', lambda m: True, 'odometry on /uav1/odom')
+        self.assertEqual(odom.child_frame_id, 'sim/base_link')
+        self.assertEqual(odom.pose.pose.position.y, 5.0)
+        published = set(topic for topic, _ in rospy.get_published_topics())
+        self.assertNotIn(NODE + '/quad/odom', published)
+        # A force on /uav1/wrench is what /uav1/applied_wrench reads back.
+        self.wait_for('uav1_applied', lambda m: True, 'a message on /uav1/applied_wrench')
+        push = rospy.Publisher('/uav1/wrench', WrenchStamped, queue_size=1, latch=True)
+        msg = WrenchStamped()
+        msg.wrench.force.z = 3.0
+        push.publish(msg)
+        self.wait_for('uav1_applied', lambda m: m.wrench.force.z == 3.0,
+                      'the force of /uav1/wrench on /uav1/applied_wrench')
+
+        with self.assertRaisesRegex(RuntimeError, "namespace '/uav1' is the topic namespace "
+                                                  "of body 'quad'"):
+            self.sim.spawn(SPAWNED.replace('tool', 'intruder') + 'namespace: /uav1\n')
+        self.sim.spawn(SPAWNED.replace('tool', 'uav2') + 'namespace: /uav2\n')
+        pose = self.wait_for('uav2_pose', lambda m: True, 'a pose on /uav2/pose')
+        self.assertEqual(pose.pose.position.y, -3.0)
+        self.sim.delete('uav2')
 
 
 if __name__ == '__main__':

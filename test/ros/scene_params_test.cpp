@@ -6,6 +6,7 @@
 
 #include "rigid_body_sim/core/inertia.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_graph_table.h"
 #include "rigid_body_sim/ros/scene_params.h"
 
 namespace rigid_body_sim {
@@ -307,6 +308,52 @@ TEST(SceneParams, GravityScaleAndDampingAreReadAndChecked) {
   text["angular_damping"] = "lots";
   EXPECT_EQ(ErrorOf(List({text})),
             "bodies[0] (name 'text'): angular_damping must be a finite number, got 'lots'");
+}
+
+TEST(SceneParams, ANamespaceIsAGraphNameNoOtherBodyResolvesTo) {
+  XmlRpcValue uav = Dumbbell("uav");
+  uav["namespace"] = "/fleet/uav1";
+  XmlRpcValue twin = Dumbbell("twin");
+  twin["namespace"] = "uav1";
+  const std::vector<SceneBody> bodies = ParseBodies(List({Dumbbell("plain"), uav, twin}));
+  EXPECT_EQ(bodies[0].graph.topic_namespace, "");
+  EXPECT_EQ(bodies[1].graph.topic_namespace, "/fleet/uav1");
+
+  // The node's namespace /fleet, its name /fleet/sim.
+  const auto resolve = [](const std::string& name) {
+    return name[0] == '/'   ? name
+           : name[0] == '~' ? "/fleet/sim/" + name.substr(1)
+                            : "/fleet/" + name;
+  };
+  try {
+    BodyGraphTable table(bodies, resolve);
+    FAIL() << "a shared namespace accepted";
+  } catch (const std::invalid_argument& error) {
+    EXPECT_STREQ(error.what(),
+                 "bodies[2] (name 'twin'): namespace '/fleet/uav1' is the topic namespace of "
+                 "body 'uav'");
+  }
+  BodyGraphTable table({bodies[0], bodies[1]}, resolve);
+  EXPECT_EQ(table.TopicNamespace("plain"), "/fleet/sim/plain");
+  EXPECT_EQ(table.TopicNamespace("uav"), "/fleet/uav1");
+  BodyGraphNames taken;
+  taken.topic_namespace = "~plain";
+  EXPECT_THROW(table.Add(2, "other", taken), std::invalid_argument);
+  EXPECT_THROW(table.TopicNamespace("other"), std::out_of_range);  // nothing added
+  EXPECT_FALSE(table.Add(2, "uav", BodyGraphNames()));             // the World's to refuse
+  table.Remove("plain");
+  EXPECT_TRUE(table.Add(1, "other", taken));  // free once its body is gone
+  EXPECT_EQ(table.TopicNamespace("other"), "/fleet/sim/plain");
+
+  XmlRpcValue spaced = Dumbbell("spaced");
+  spaced["namespace"] = "uav 1";
+  EXPECT_EQ(ErrorOf(List({spaced})),
+            "bodies[0] (name 'spaced'): namespace 'uav 1' is not a ROS graph name: Character [ ] "
+            "at element [3] is not valid in Graph Resource Name [uav 1].  Valid characters are "
+            "a-z, A-Z, 0-9, / and _.");
+  spaced["namespace"] = 3;
+  EXPECT_EQ(ErrorOf(List({spaced})),
+            "bodies[0] (name 'spaced'): namespace must be a non-empty ROS graph name, got 3");
 }
 
 TEST(SceneParams, NamesAndStatesAreCheckedByTheWorldBuiltFromTheScene) {

@@ -1,5 +1,6 @@
 // Each body's own topics (doc/node.md, "Topics and services"): the
-// ~<body>/... publishers and the ~<body>/wrench subscription, advertised and
+// publishers and the wrench subscription in its topic namespace (~<body>
+// unless the body names one), advertised and
 // shut down on a thread of their own. Each is a call to the master of a few
 // milliseconds, so 10,000 bodies' topics would hold the first step back by
 // minutes, and a spawn or delete would make steps late: the stepping thread
@@ -39,6 +40,7 @@ class BodyTopics {
   // One body's topics; read only once `advertised` is set.
   struct Topics {
     std::string body;
+    std::string topic_namespace;  // resolved
     CountedPublisher pose;
     CountedPublisher twist;
     CountedPublisher odom;
@@ -48,19 +50,20 @@ class BodyTopics {
     std::atomic<bool> advertised{false};
     std::atomic<bool> removed{false};  // set when the body goes: not advertised after
   };
-  // Called on the stepping thread for each message on ~<body>/wrench.
+  // Called on the stepping thread for each message on a body's wrench topic.
   using WrenchCallback =
       std::function<void(const std::string& body, const geometry_msgs::WrenchStamped& msg)>;
 
   // With `enabled` false no per-body topic is ever advertised.
-  BodyTopics(const ros::NodeHandle& private_nh, bool enabled, WrenchCallback on_wrench);
+  BodyTopics(bool enabled, WrenchCallback on_wrench);
   // Stops the advertising thread; topics not yet advertised never are.
   ~BodyTopics();
   BodyTopics(const BodyTopics&) = delete;
   BodyTopics& operator=(const BodyTopics&) = delete;
 
-  // A new body named `body`; its topics appear shortly.
-  void Add(core::BodyId id, const std::string& body);
+  // A new body named `body` with its topics in `topic_namespace` (resolved);
+  // they appear shortly.
+  void Add(core::BodyId id, const std::string& body, const std::string& topic_namespace);
   // The body goes now; its topics are shut down shortly.
   void Remove(core::BodyId id);
 
@@ -86,7 +89,6 @@ class BodyTopics {
   void Advertise(const std::shared_ptr<Topics>& topics);
   void Push(Task task);
 
-  ros::NodeHandle private_nh_;
   const bool enabled_;
   const WrenchCallback on_wrench_;
   core::BodyMap<std::shared_ptr<Topics>> bodies_;  // stepping thread only

@@ -14,6 +14,9 @@ namespace rigid_body_sim {
 // What a body is called on the ROS graph besides its name, and which of its
 // frames the node broadcasts.
 struct BodyGraphNames {
+  // The namespace of the body's topics (pose, twist, odom, imu,
+  // applied_wrench, wrench), a ROS graph name; "" is ~<body>.
+  std::string topic_namespace;
   // The TF frame's name before tf_prefix; "" is the body's name. A URDF body's
   // is its root link's.
   std::string tf_frame;
