@@ -1,4 +1,4 @@
-// One body as a scene entry or a ~spawn_body request defines it, before it
+// One body as a scene entry or a spawn request defines it, before it
 // joins a World. A new key of a body entry goes here, in CheckBodyDef
 // (validate.h) and in the reader (src/ros/scene_bodies.cpp).
 #pragma once
