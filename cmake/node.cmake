@@ -37,6 +37,7 @@ add_library(rigid_body_sim_ros
   src/ros/state_publisher.cpp
   src/ros/static_frames.cpp
   src/ros/node_diagnostics.cpp
+  src/ros/runtime_keys.cpp
   src/ros/runtime_config.cpp
   src/ros/lockstep_gate.cpp
   src/ros/lockstep_publishers.cpp

@@ -52,11 +52,11 @@ add_rostest(test/ros/body_frames.test DEPENDENCIES rigid_body_sim_node)
 
 # The node's pieces that need no master: message conversions, the per-body
 # outputs and the sites' static transforms, the wrench and request checks, the
-# scene and IMU noise parsers, the runtime configuration's checks, the bodies
+# scene and IMU noise parsers, the runtime keys' checks and configuration, the bodies
 # read from URDF.
 catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_intake_test.cpp
   test/ros/body_state_request_test.cpp test/ros/scene_params_test.cpp
-  test/ros/runtime_config_test.cpp test/ros/body_outputs_test.cpp
+  test/ros/runtime_keys_test.cpp test/ros/runtime_config_test.cpp test/ros/body_outputs_test.cpp
   test/ros/imu_noise_params_test.cpp test/ros/wrench_job_request_test.cpp
   test/ros/yaml_value_test.cpp test/ros/lockstep_gate_test.cpp
   test/ros/state_hash_worker_test.cpp test/ros/urdf_body_test.cpp

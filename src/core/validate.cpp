@@ -42,81 +42,27 @@ std::string PropertiesError(const BodyProperties& properties) {
 
 }  // namespace
 
-void CheckIntegratorName(const std::string& name, KeyNaming naming) {
-  const char* const prefix = naming == KeyNaming::kParameter ? "~integrator: "
-                             : naming == KeyNaming::kRuntime ? "integrator: "
-                                                             : "";
-  RBS_CHECK(FindIntegrator(name) != nullptr, prefix + UnknownIntegratorMessage(name));
+void CheckIntegratorName(const std::string& name) {
+  RBS_CHECK(FindIntegrator(name) != nullptr, UnknownIntegratorMessage(name));
 }
 
-void CheckGravity(const Eigen::Vector3d& gravity_mps2, KeyNaming naming) {
-  switch (naming) {
-    case KeyNaming::kWorld:
-      RBS_CHECK(gravity_mps2.allFinite(), "gravity must be finite");
-      return;
-    case KeyNaming::kParameter:
-      RBS_CHECK(gravity_mps2.allFinite(),
-                "~gravity must be 3 finite numbers, got [" + FormatNumber(gravity_mps2.x()) + ", " +
-                    FormatNumber(gravity_mps2.y()) + ", " + FormatNumber(gravity_mps2.z()) + "]");
-      return;
-    case KeyNaming::kRuntime:
-      // dynamic_reconfigure has a key per component.
-      const char* const keys[] = {"gravity_x", "gravity_y", "gravity_z"};
-      for (int i = 0; i < 3; ++i) {
-        RBS_CHECK(std::isfinite(gravity_mps2[i]),
-                  std::string(keys[i]) + " must be finite, got " + FormatNumber(gravity_mps2[i]));
-      }
-      return;
-  }
+void CheckGravity(const Eigen::Vector3d& gravity_mps2) {
+  RBS_CHECK(gravity_mps2.allFinite(), "gravity must be finite");
 }
 
-void CheckWrenchTimeout(double timeout_s, KeyNaming naming) {
-  const bool valid = std::isfinite(timeout_s) && timeout_s >= 0.0;
-  switch (naming) {
-    case KeyNaming::kWorld:
-      RBS_CHECK(valid, "wrench timeout must be finite and >= 0");
-      return;
-    case KeyNaming::kParameter:
-      RBS_CHECK(valid, "~wrench_timeout must be >= 0, got " + FormatNumber(timeout_s));
-      return;
-    case KeyNaming::kRuntime:
-      RBS_CHECK(valid, "wrench_timeout must be finite and >= 0, got " + FormatNumber(timeout_s));
-      return;
-  }
-}
-
-void CheckRealTimeFactor(double factor, KeyNaming naming) {
-  const bool valid = std::isfinite(factor) && factor >= 0.0;
-  if (naming == KeyNaming::kParameter) {
-    RBS_CHECK(valid, "~real_time_factor must be >= 0, got " + FormatNumber(factor));
-  }
-  RBS_CHECK(valid, "real_time_factor must be finite and >= 0, got " + FormatNumber(factor));
-}
-
-void CheckPublishRate(double publish_rate_hz, double rate_hz, KeyNaming naming) {
-  const std::string key = naming == KeyNaming::kParameter ? "~publish_rate" : "publish_rate";
-  RBS_CHECK(publish_rate_hz > 0.0, key + " must be > 0, got " + FormatNumber(publish_rate_hz));
-  RBS_CHECK(publish_rate_hz <= rate_hz, key + " must not exceed ~rate (" + FormatNumber(rate_hz) +
-                                            "), got " + FormatNumber(publish_rate_hz));
+void CheckWrenchTimeout(double timeout_s) {
+  RBS_CHECK(std::isfinite(timeout_s) && timeout_s >= 0.0, "wrench timeout must be finite and >= 0");
 }
 
 void CheckWorldDef(const WorldDef& def) {
-  CheckIntegratorName(def.integrator, KeyNaming::kWorld);
+  CheckIntegratorName(def.integrator);
   RBS_CHECK(def.dt_s > 0.0, "dt must be > 0");
   RBS_CHECK(def.threads >= 1, "threads must be >= 1");
-  // Checked by the setters alone before; after the checks above, so that a
-  // def that breaks one of those and one of these is named as it was.
-  CheckGravity(def.gravity, KeyNaming::kWorld);
-  CheckWrenchTimeout(def.wrench_timeout_s, KeyNaming::kWorld);
+  // What the setters check too, after the checks above: a def that breaks
+  // one of those and one of these is named by the first.
+  CheckGravity(def.gravity);
+  CheckWrenchTimeout(def.wrench_timeout_s);
   RBS_CHECK(def.max_substeps >= 1, "max_substeps must be >= 1");
-}
-
-void CheckRuntimeSettings(const RuntimeSettings& settings, double rate_hz) {
-  CheckRealTimeFactor(settings.real_time_factor, KeyNaming::kRuntime);
-  CheckPublishRate(settings.publish_rate_hz, rate_hz, KeyNaming::kRuntime);
-  CheckGravity(settings.gravity_mps2, KeyNaming::kRuntime);
-  CheckWrenchTimeout(settings.wrench_timeout_s, KeyNaming::kRuntime);
-  CheckIntegratorName(settings.integrator, KeyNaming::kRuntime);
 }
 
 void CheckBodyName(const std::string& name, std::size_t index) {

@@ -354,14 +354,14 @@ void World::SetBodyState(BodyId id, const BodyState& state) {
 }
 
 void World::SetGravity(const Eigen::Vector3d& gravity_mps2) {
-  CheckGravity(gravity_mps2, KeyNaming::kWorld);
+  CheckGravity(gravity_mps2);
   options_.gravity = gravity_mps2;
   has_gravity_ = !gravity_mps2.isZero(0.0);
   wrenches_.MarkLoadsStale();  // gravity is summed into the loads with the wrenches
 }
 
 void World::SetWrenchTimeout(double timeout_s) {
-  CheckWrenchTimeout(timeout_s, KeyNaming::kWorld);
+  CheckWrenchTimeout(timeout_s);
   options_.wrench_timeout_s = timeout_s;  // WrenchTable::Reduce sees the change
 }
 

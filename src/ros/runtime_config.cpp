@@ -3,21 +3,21 @@
 #include <stdexcept>
 #include <vector>
 
-#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/runtime_keys.h"
 
 namespace rigid_body_sim {
 
-SimulationNodeConfig ToConfig(const core::RuntimeSettings& settings) {
+SimulationNodeConfig ToConfig(const RuntimeKeys& keys) {
   SimulationNodeConfig config = SimulationNodeConfig::__getDefault__();
-  config.real_time_factor = settings.real_time_factor;
-  config.publish_rate = settings.publish_rate_hz;
-  config.gravity_x = settings.gravity_mps2.x();
-  config.gravity_y = settings.gravity_mps2.y();
-  config.gravity_z = settings.gravity_mps2.z();
-  config.wrench_timeout = settings.wrench_timeout_s;
-  config.publish_tf = settings.publish_tf;
-  config.integrator = settings.integrator;
+  config.real_time_factor = keys.real_time_factor;
+  config.publish_rate = keys.publish_rate_hz;
+  config.gravity_x = keys.gravity_mps2.x();
+  config.gravity_y = keys.gravity_mps2.y();
+  config.gravity_z = keys.gravity_mps2.z();
+  config.wrench_timeout = keys.wrench_timeout_s;
+  config.publish_tf = keys.publish_tf;
+  config.integrator = keys.integrator;
   return config;
 }
 
@@ -33,7 +33,7 @@ NodeSettings WithConfig(NodeSettings settings, const SimulationNodeConfig& confi
 
 std::optional<std::string> WhyNotApplicable(const NodeSettings& settings) {
   try {
-    core::CheckRuntimeSettings(settings, settings.rate_hz);
+    CheckRuntimeKeys(settings, settings.rate_hz);
   } catch (const std::invalid_argument& why) {
     return why.what();
   }
@@ -59,7 +59,7 @@ RuntimeConfig::RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettin
 
 void RuntimeConfig::OnReconfigure(SimulationNodeConfig& config, std::uint32_t /*level*/) {
   const NodeSettings requested = WithConfig(in_force_, config);
-  if (core::SameRuntimeSettings(requested, in_force_)) return;
+  if (SameRuntimeKeys(requested, in_force_)) return;
   if (const std::optional<std::string> why = WhyNotApplicable(requested)) {
     LogOffThread(LogLevel::kWarn, "dynamic_reconfigure: " + *why +
                                       "; not applied, the configuration in force stays");

@@ -6,15 +6,14 @@
 #include <ros/names.h>
 
 #include "rigid_body_sim/core/format_number.h"
-#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
+#include "rigid_body_sim/ros/runtime_keys.h"
 #include "rigid_body_sim/ros/scene_error.h"
 
 namespace rigid_body_sim {
 namespace {
 
 using core::FormatNumber;
-using core::KeyNaming;
 using XmlRpc::XmlRpcValue;
 
 // More shards than this would be more processes than any one scene needs.
@@ -24,7 +23,7 @@ constexpr double kMaxSubstepsLimit = 1e6;
 // ~threads above this is a mistyped value, not a machine.
 constexpr double kMaxThreads = 256;
 
-// The validator's check of a value read, as the scene's error.
+// A check of a value read, as the scene's error.
 template <typename Check>
 void AsSceneError(Check check) {
   try {
@@ -157,17 +156,15 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   }
   // The runtime keys, by the checks the runtime configuration makes too.
   settings.publish_rate_hz = params.Number("publish_rate", settings.publish_rate_hz);
-  AsSceneError([&] {
-    core::CheckPublishRate(settings.publish_rate_hz, settings.rate_hz, KeyNaming::kParameter);
-  });
+  AsSceneError(
+      [&] { CheckPublishRate(settings.publish_rate_hz, settings.rate_hz, KeyNaming::kParameter); });
   settings.integrator = params.String("integrator", settings.integrator);
-  AsSceneError([&] { core::CheckIntegratorName(settings.integrator, KeyNaming::kParameter); });
+  AsSceneError([&] { CheckIntegratorKey(settings.integrator, KeyNaming::kParameter); });
   settings.gravity_mps2 = params.Vector3("gravity", settings.gravity_mps2);  // finite once read
   settings.wrench_timeout_s = params.Number("wrench_timeout", settings.wrench_timeout_s);
-  AsSceneError([&] { core::CheckWrenchTimeout(settings.wrench_timeout_s, KeyNaming::kParameter); });
+  AsSceneError([&] { CheckWrenchTimeoutKey(settings.wrench_timeout_s, KeyNaming::kParameter); });
   settings.real_time_factor = params.Number("real_time_factor", settings.real_time_factor);
-  AsSceneError(
-      [&] { core::CheckRealTimeFactor(settings.real_time_factor, KeyNaming::kParameter); });
+  AsSceneError([&] { CheckRealTimeFactor(settings.real_time_factor, KeyNaming::kParameter); });
   settings.publish_clock = params.Bool("publish_clock", settings.publish_clock);
   settings.publish_tf = params.Bool("publish_tf", settings.publish_tf);
   settings.per_body_topics = params.Bool("per_body_topics", settings.per_body_topics);

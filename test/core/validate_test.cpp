@@ -57,10 +57,16 @@ TEST(FormatNumber, IsPrintfG) {
 
 TEST(Validate, TheDefaultsAreValid) {
   EXPECT_EQ(MessageOf([] { CheckWorldDef(WorldDef{}); }), "accepted");
-  EXPECT_EQ(MessageOf([] { CheckRuntimeSettings(RuntimeSettings{}, 1000.0); }), "accepted");
+  const RuntimeSettings runtime;
+  EXPECT_EQ(MessageOf([&] {
+              CheckIntegratorName(runtime.integrator);
+              CheckGravity(runtime.gravity_mps2);
+              CheckWrenchTimeout(runtime.wrench_timeout_s);
+            }),
+            "accepted");
 }
 
-// What the setters refused, the constructor refuses now too, in the same words.
+// What the setters refuse, the constructor refuses too, in the same words.
 TEST(Validate, TheWorldConstructorRefusesWhatItsSettersRefuse) {
   WorldDef def;
   def.gravity = {0.0, kNan, 0.0};
@@ -81,7 +87,7 @@ TEST(Validate, TheWorldConstructorRefusesWhatItsSettersRefuse) {
   EXPECT_EQ(MessageOf([&] { world.SetWrenchTimeout(-1.0); }),
             "wrench timeout must be finite and >= 0");
   EXPECT_EQ(MessageOf([&] { world.SetIntegrator("leapfrog"); }),
-            MessageOf([] { CheckIntegratorName("leapfrog", KeyNaming::kWorld); }));
+            MessageOf([] { CheckIntegratorName("leapfrog"); }));
 }
 
 TEST(Validate, TheWorldDefsOlderChecksKeepTheirWordsAndOrder) {
@@ -98,47 +104,14 @@ TEST(Validate, TheWorldDefsOlderChecksKeepTheirWordsAndOrder) {
   EXPECT_EQ(WorldMessage(def), "threads must be >= 1");
 }
 
-TEST(Validate, EachKeyIsNamedAsItsReaderNamesIt) {
-  const auto timeout = [](KeyNaming naming) {
-    return MessageOf([naming] { CheckWrenchTimeout(-1.0, naming); });
-  };
-  EXPECT_EQ(timeout(KeyNaming::kWorld), "wrench timeout must be finite and >= 0");
-  EXPECT_EQ(timeout(KeyNaming::kParameter), "~wrench_timeout must be >= 0, got -1");
-  EXPECT_EQ(timeout(KeyNaming::kRuntime), "wrench_timeout must be finite and >= 0, got -1");
-
-  EXPECT_EQ(MessageOf([] { CheckRealTimeFactor(-0.5, KeyNaming::kParameter); }),
-            "~real_time_factor must be >= 0, got -0.5");
-  EXPECT_EQ(MessageOf([] { CheckRealTimeFactor(kNan, KeyNaming::kRuntime); }),
-            "real_time_factor must be finite and >= 0, got nan");
-  EXPECT_EQ(MessageOf([] { CheckPublishRate(0.0, 500.0, KeyNaming::kParameter); }),
-            "~publish_rate must be > 0, got 0");
-  EXPECT_EQ(MessageOf([] { CheckPublishRate(1000.0, 500.0, KeyNaming::kParameter); }),
-            "~publish_rate must not exceed ~rate (500), got 1000");
-  EXPECT_EQ(MessageOf([] { CheckPublishRate(1000.0, 500.0, KeyNaming::kRuntime); }),
-            "publish_rate must not exceed ~rate (500), got 1000");
-  EXPECT_EQ(MessageOf([] { CheckIntegratorName("leapfrog", KeyNaming::kParameter); }),
-            "~integrator: " + UnknownIntegratorMessage("leapfrog"));
-  EXPECT_EQ(MessageOf([] { CheckIntegratorName("leapfrog", KeyNaming::kRuntime); }),
-            "integrator: " + UnknownIntegratorMessage("leapfrog"));
-  EXPECT_EQ(MessageOf([] {
-              CheckGravity({0.0, kInf, 0.0}, KeyNaming::kRuntime);
-            }),
-            "gravity_y must be finite, got inf");
-}
-
-TEST(Validate, RuntimeSettingsAreCheckedInTheConfigurationsOrder) {
-  RuntimeSettings settings;
-  settings.integrator = "leapfrog";
-  settings.wrench_timeout_s = -1.0;
-  settings.real_time_factor = -1.0;
-  EXPECT_EQ(MessageOf([&] { CheckRuntimeSettings(settings, 1000.0); }),
-            "real_time_factor must be finite and >= 0, got -1");
-  settings.real_time_factor = 1.0;
-  EXPECT_EQ(MessageOf([&] { CheckRuntimeSettings(settings, 1000.0); }),
-            "wrench_timeout must be finite and >= 0, got -1");
-  settings.wrench_timeout_s = 0.0;
-  EXPECT_EQ(MessageOf([&] { CheckRuntimeSettings(settings, 1000.0); }),
-            "integrator: " + UnknownIntegratorMessage("leapfrog"));
+// The World's settings name the World's field; the node names its own keys
+// (test/ros/runtime_keys_test.cpp).
+TEST(Validate, TheWorldsSettingsNameTheirField) {
+  EXPECT_EQ(MessageOf([] { CheckWrenchTimeout(-1.0); }), "wrench timeout must be finite and >= 0");
+  EXPECT_EQ(MessageOf([] { CheckWrenchTimeout(kNan); }), "wrench timeout must be finite and >= 0");
+  EXPECT_EQ(MessageOf([] { CheckGravity({0.0, kInf, 0.0}); }), "gravity must be finite");
+  EXPECT_EQ(MessageOf([] { CheckIntegratorName("leapfrog"); }),
+            UnknownIntegratorMessage("leapfrog"));
 }
 
 TEST(Validate, BodyNamesFollowTheScenesRules) {

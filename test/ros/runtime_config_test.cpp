@@ -41,9 +41,9 @@ TEST(RuntimeConfig, ConfigAndSettingsConvertExactly) {
   NodeSettings other;  // every runtime key different, the rest too
   other.rate_hz = 123.0;
   const NodeSettings back = WithConfig(other, config);
-  EXPECT_TRUE(core::SameRuntimeSettings(back, settings));
+  EXPECT_TRUE(SameRuntimeKeys(back, settings));
   EXPECT_EQ(back.rate_hz, 123.0);  // not a runtime key
-  EXPECT_FALSE(core::SameRuntimeSettings(other, settings));
+  EXPECT_FALSE(SameRuntimeKeys(other, settings));
 }
 
 TEST(RuntimeConfig, EveryValidValueIsApplicable) {
@@ -133,7 +133,7 @@ TEST(RuntimeConfig, TheIntegratorEnumIsTheCoresTable) {
 TEST(RuntimeConfig, TheCfgDefaultsAreTheDocumentedParameterDefaults) {
   const NodeSettings defaults;
   const NodeSettings from_cfg = WithConfig(defaults, SimulationNodeConfig::__getDefault__());
-  EXPECT_TRUE(core::SameRuntimeSettings(from_cfg, defaults));
+  EXPECT_TRUE(SameRuntimeKeys(from_cfg, defaults));
 }
 
 }  // namespace

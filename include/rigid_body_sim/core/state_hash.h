@@ -1,4 +1,4 @@
-// A 64-bit fingerprint of the world's state as ~bodies carries it (doc/node.md,
+// A 64-bit fingerprint of the world's state as the node publishes it (doc/node.md,
 // "State hash"): FNV-1a (Fowler–Noll–Vo) over the IEEE-754 little-endian bytes
 // of each body's position (3), orientation (x, y, z, w), linear momentum (3)
 // and angular momentum (3), in scene order. Equal runs give equal hashes, and

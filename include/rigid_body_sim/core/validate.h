@@ -1,10 +1,12 @@
-// The one validator: what a world, a body and the runtime settings must be,
-// for every caller (the scene's reader, ~spawn_body, the runtime
-// configuration, shards, the World's constructor and setters). Each check
-// throws std::invalid_argument with one line naming the key and, for a body,
-// the entry ("bodies[2] (name 'rod'): ..."); it does not read anything, so a
-// reader's errors about how a value is written (a string for a number, two
-// numbers for three) stay the reader's.
+// The one validator: what a world and a body must be, for every caller (the
+// scene's reader, a body spawned at run time, the runtime configuration,
+// shards, the World's constructor and setters). Each check throws
+// std::invalid_argument with one line naming the field as the World names it
+// and, for a body, the entry ("bodies[2] (name 'rod'): ..."); a caller whose
+// user knows the field by another name (a node's parameter) words the error
+// its own way. It does not read anything, so a reader's errors about how a
+// value is written (a string for a number, two numbers for three) stay the
+// reader's.
 #pragma once
 
 #include <cstddef>
@@ -25,39 +27,15 @@ namespace rigid_body_sim::core {
 // and send (a TF frame and topic names per body).
 constexpr std::size_t kMaxBodyNameLength = 128;
 
-// Who is told of a bad value, and so how its key is spelt. Each caller has
-// always worded its errors its own way; the wording is kept, the condition is
-// written once.
-enum class KeyNaming {
-  // The World's callers: "gravity must be finite", "wrench timeout must be
-  // finite and >= 0".
-  kWorld,
-  // The node's private parameters at start: "~wrench_timeout must be >= 0,
-  // got -1". The reader has already refused a number that is not finite.
-  kParameter,
-  // The runtime configuration's keys: "wrench_timeout must be finite and >=
-  // 0, got -1", "gravity_y must be finite, got inf".
-  kRuntime,
-};
+// The settings a World takes between steps (RuntimeSettings), each alone:
+// "gravity must be finite", "wrench timeout must be finite and >= 0".
+void CheckIntegratorName(const std::string& name);       // IntegratorTable()
+void CheckGravity(const Eigen::Vector3d& gravity_mps2);  // finite
+void CheckWrenchTimeout(double timeout_s);               // finite, >= 0
 
-// Single keys, for the readers that check each key as they read it. The
-// node's own keys (real-time factor, publish rate) have no World spelling:
-// kWorld names them as kRuntime does.
-void CheckIntegratorName(const std::string& name, KeyNaming naming);       // IntegratorTable()
-void CheckGravity(const Eigen::Vector3d& gravity_mps2, KeyNaming naming);  // finite
-void CheckWrenchTimeout(double timeout_s, KeyNaming naming);               // finite, >= 0
-void CheckRealTimeFactor(double factor, KeyNaming naming);                 // finite, >= 0
-// > 0 and at most the integration rate `rate_hz`.
-void CheckPublishRate(double publish_rate_hz, double rate_hz, KeyNaming naming);
-
-// What a World needs (kWorld): a known integrator, dt > 0, threads >= 1, a
-// finite gravity, a finite wrench timeout >= 0, max_substeps >= 1.
+// What a World needs: a known integrator, dt > 0, threads >= 1, a finite
+// gravity, a finite wrench timeout >= 0, max_substeps >= 1.
 void CheckWorldDef(const WorldDef& def);
-
-// What a node stepping at `rate_hz` can take (kRuntime), in the order of the
-// runtime configuration's checks: real-time factor, publish rate, gravity,
-// wrench timeout, integrator.
-void CheckRuntimeSettings(const RuntimeSettings& settings, double rate_hz);
 
 // The scene's rules for the name of body `index`, which names a TF frame and
 // topics: at most kMaxBodyNameLength characters, a letter and then letters,

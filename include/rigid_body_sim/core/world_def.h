@@ -1,6 +1,6 @@
-// What a World is made of besides its bodies (WorldDef), and the settings
-// that may change while the node runs (RuntimeSettings), each with the
-// defaults of doc/node.md, "Parameters". Their checks: validate.h.
+// What a World is made of besides its bodies (WorldDef), with the defaults of
+// doc/node.md, "Parameters", and the part of it a World takes again between
+// steps (RuntimeSettings). Their checks: validate.h.
 #pragma once
 
 #include <cstddef>
@@ -29,27 +29,12 @@ struct WorldDef {
   std::size_t threads = 1;
 };
 
-// The keys of the runtime configuration (doc/node.md, "Runtime
-// configuration"): the World takes the first three between steps
-// (World::SetIntegrator, SetGravity, SetWrenchTimeout), the node's pacing
-// and outputs the rest. The node's settings extend this struct, so that
-// there is one copy of them, the node's.
+// What a World takes between steps (World::SetIntegrator, SetGravity,
+// SetWrenchTimeout), with WorldDef's defaults.
 struct RuntimeSettings {
-  std::string integrator = kDefaultIntegrator;
-  Eigen::Vector3d gravity_mps2 = Eigen::Vector3d::Zero();  // at every COM, world axes
-  double wrench_timeout_s = 0.0;                           // 0: a wrench is held until replaced
-  double real_time_factor = 1.0;                           // 0: as fast as possible
-  double publish_rate_hz = 100.0;                          // output rate, <= the integration rate
-  bool publish_tf = true;
+  std::string integrator = WorldDef{}.integrator;
+  Eigen::Vector3d gravity_mps2 = WorldDef{}.gravity;      // at every COM, world axes
+  double wrench_timeout_s = WorldDef{}.wrench_timeout_s;  // 0: a wrench is held until replaced
 };
-
-// Whether `a` and `b` agree on every runtime key. A named function, not
-// operator==: on two structs that extend RuntimeSettings, == would compare
-// these keys alone without saying so.
-inline bool SameRuntimeSettings(const RuntimeSettings& a, const RuntimeSettings& b) {
-  return a.integrator == b.integrator && a.gravity_mps2 == b.gravity_mps2 &&
-         a.wrench_timeout_s == b.wrench_timeout_s && a.real_time_factor == b.real_time_factor &&
-         a.publish_rate_hz == b.publish_rate_hz && a.publish_tf == b.publish_tf;
-}
 
 }  // namespace rigid_body_sim::core

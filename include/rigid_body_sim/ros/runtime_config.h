@@ -13,18 +13,18 @@
 #include <ros/node_handle.h>
 #include <boost/thread/recursive_mutex.hpp>
 
+#include "rigid_body_sim/ros/runtime_keys.h"
 #include "rigid_body_sim/ros/scene_params.h"
 
 namespace rigid_body_sim {
 
 // The runtime keys as the server's configuration.
-SimulationNodeConfig ToConfig(const core::RuntimeSettings& settings);
+SimulationNodeConfig ToConfig(const RuntimeKeys& keys);
 // `settings` with the runtime keys taken from `config` (the one place that
-// maps the .cfg's keys to core::RuntimeSettings' fields, with ToConfig).
+// maps the .cfg's keys to RuntimeKeys' fields, with ToConfig).
 NodeSettings WithConfig(NodeSettings settings, const SimulationNodeConfig& config);
 // Why a node stepping at settings.rate_hz cannot take the runtime keys of
-// `settings` (core::CheckRuntimeSettings), naming the first bad key; nullopt
-// if it can.
+// `settings` (CheckRuntimeKeys), naming the first bad key; nullopt if it can.
 std::optional<std::string> WhyNotApplicable(const NodeSettings& settings);
 
 class RuntimeConfig {

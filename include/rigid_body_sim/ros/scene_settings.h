@@ -10,6 +10,7 @@
 
 #include "rigid_body_sim/core/imu_noise.h"
 #include "rigid_body_sim/core/world_def.h"
+#include "rigid_body_sim/ros/runtime_keys.h"
 
 namespace rigid_body_sim {
 
@@ -29,11 +30,10 @@ struct ShardSettings {
   std::uint32_t index = 0;
 };
 
-// The runtime keys (integrator, gravity_mps2, wrench_timeout_s,
-// real_time_factor, publish_rate_hz, publish_tf) are the base's: the node's
-// settings hold the one copy of them, which the runtime configuration reads
-// and the node changes (SimulationNode::ApplyRuntimeSettings).
-struct NodeSettings : core::RuntimeSettings {
+// The runtime keys are the base's: the node's settings hold the one copy of
+// them, which the runtime configuration reads and the node changes
+// (SimulationNode::ApplyRuntimeSettings).
+struct NodeSettings : RuntimeKeys {
   std::string world_frame = "world";
   std::string tf_prefix;    // prepended as written to body names for TF
   double rate_hz = 1000.0;  // integration rate, dt = 1 / rate
