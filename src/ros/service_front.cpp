@@ -44,6 +44,7 @@ ServiceFront::ServiceFront(const ros::NodeHandle& private_nh, const NodeSettings
       world_frame_(settings.world_frame),
       shard_count_(settings.shard.count),
       private_nh_(private_nh),
+      spawn_files_(UrdfFilePolicy::UnderRoots(settings.spawn_file_roots)),
       requests_(private_nh_),
       spawn_service_(
           requests_.node_handle().advertiseService("spawn_body", &ServiceFront::OnSpawnBody, this)),
@@ -219,7 +220,8 @@ bool ServiceFront::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response&
     try {
       const std::size_t index = editor_.body_count();
       if (index >= kMaxSceneBodies) throw SceneError(BodyLimitMessage(index));
-      ParseBodyEntry(XmlRpcFromYaml(request.body_yaml), index, &entry);
+      ParseBodyEntry(XmlRpcFromYaml(request.body_yaml), index, &entry, LookupMasterParam,
+                     spawn_files_);
     } catch (const std::exception& error) {  // SceneError, or a model the core refuses
       message = error.what();
     }

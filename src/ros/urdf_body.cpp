@@ -1,16 +1,12 @@
 #include "rigid_body_sim/ros/urdf_body.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
 
 #include <console_bridge/console.h>
-#include <ros/package.h>
 #include <ros/param.h>
 #include <urdf/model.h>
 
@@ -208,54 +204,16 @@ bool LookupMasterParam(const std::string& name, XmlRpcValue* value) {
   return ros::param::get(name, *value);
 }
 
-std::string ResolveUrdfPath(const std::string& path) {
-  static const std::string kPackageScheme = "package://";
-  if (path.compare(0, kPackageScheme.size(), kPackageScheme) == 0) {
-    const std::string rest = path.substr(kPackageScheme.size());
-    const std::size_t slash = rest.find('/');
-    if (slash == std::string::npos || slash == 0 || slash + 1 == rest.size()) {
-      throw SceneError("urdf.file " + Quoted(path) +
-                       ": a package URL must be package://PACKAGE/PATH");
-    }
-    const std::string package = rest.substr(0, slash);
-    const std::string package_path = ros::package::getPath(package);
-    if (package_path.empty()) {
-      throw SceneError("urdf.file " + Quoted(path) + ": package " + Quoted(package) +
-                       " is not found");
-    }
-    return package_path + rest.substr(slash);
-  }
-  if (path.empty() || path[0] != '/') {
-    throw SceneError("urdf.file " + Quoted(path) +
-                     " must be an absolute path or package://PACKAGE/PATH");
-  }
-  return path;
-}
-
-std::string UrdfText(const UrdfSource& source, const UrdfParamLookup& lookup) {
+std::string UrdfText(const UrdfSource& source, const UrdfParamLookup& lookup,
+                     const UrdfFilePolicy& files) {
   switch (source.kind) {
     case UrdfSource::Kind::kXml:
       if (source.value.size() > kMaxUrdfBytes) {
         throw SceneError("urdf.xml " + TooLong(source.value.size()));
       }
       return source.value;
-    case UrdfSource::Kind::kFile: {
-      const std::string path = ResolveUrdfPath(source.value);
-      std::ifstream file(path, std::ios::binary);
-      if (!file) {
-        throw SceneError("urdf.file " + Quoted(path) + " cannot be read: " + std::strerror(errno));
-      }
-      // One byte past the limit tells a file that is too long.
-      std::string text(kMaxUrdfBytes + 1, '\0');
-      file.read(&text[0], static_cast<std::streamsize>(text.size()));
-      if (file.bad()) throw SceneError("urdf.file " + Quoted(path) + " cannot be read");
-      text.resize(static_cast<std::size_t>(file.gcount()));
-      if (text.size() > kMaxUrdfBytes) {
-        throw SceneError("urdf.file " + Quoted(path) + " is more than the limit of " +
-                         std::to_string(kMaxUrdfBytes) + " bytes (1 MB)");
-      }
-      return text;
-    }
+    case UrdfSource::Kind::kFile:
+      return files.Read(source.value);
     case UrdfSource::Kind::kParam: {
       XmlRpcValue value;
       if (!lookup(source.value, &value)) {

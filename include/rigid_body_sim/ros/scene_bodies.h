@@ -42,11 +42,12 @@ void ParseBodies(const XmlRpc::XmlRpcValue& bodies, SceneBodies* scene_bodies,
                  const UrdfParamLookup& lookup = LookupMasterParam);
 
 // One entry of `bodies`, as it would be checked at index `index` of the
-// list, appended to `scene_bodies`. Throws SceneError ("bodies[i] (name
-// 'n'): ...", "bodies[i]: ..." while a urdf body's default name is not yet
-// known); appends nothing then.
+// list, appended to `scene_bodies`, its `urdf.file` read as `files` allows.
+// Throws SceneError ("bodies[i] (name 'n'): ...", "bodies[i]: ..." while a
+// urdf body's default name is not yet known); appends nothing then.
 void ParseBodyEntry(const XmlRpc::XmlRpcValue& body, std::size_t index, SceneBodies* scene_bodies,
-                    const UrdfParamLookup& lookup = LookupMasterParam);
+                    const UrdfParamLookup& lookup = LookupMasterParam,
+                    const UrdfFilePolicy& files = UrdfFilePolicy::AnyPath());
 
 // The bodies as the core's definitions, in order (copies share the models'
 // particles).
