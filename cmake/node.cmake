@@ -33,6 +33,7 @@ add_library(rigid_body_sim_ros
   src/ros/urdf_body.cpp
   src/ros/urdf_file_policy.cpp
   src/ros/regular_file.cpp
+  src/ros/master_param.cpp
   src/ros/body_topics.cpp
   src/ros/log_thread.cpp
   src/ros/held_joint_states.cpp

@@ -7,11 +7,11 @@
 #include <utility>
 
 #include <console_bridge/console.h>
-#include <ros/param.h>
 #include <urdf/model.h>
 
 #include "rigid_body_sim/core/format_number.h"
 #include "rigid_body_sim/core/inertia.h"
+#include "rigid_body_sim/ros/master_param.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
 
@@ -83,6 +83,11 @@ struct PendingLink {
   urdf::LinkConstSharedPtr link;
   Eigen::Isometry3d T_root_link;
 };
+
+// The longest answer of the master taken for a `param` source: XML writes a
+// character of the text in at most 6 ("&quot;"), and the answer around it
+// is short.
+constexpr std::size_t kMaxUrdfAnswerBytes = 6 * kMaxUrdfBytes + 65536;
 
 std::string Quoted(const std::string& text) { return "'" + text + "'"; }
 
@@ -201,7 +206,17 @@ UrdfSource ParseUrdfSource(const XmlRpcValue& urdf) {
 }
 
 bool LookupMasterParam(const std::string& name, XmlRpcValue* value) {
-  return ros::param::get(name, *value);
+  MasterParam read = MasterParam::kNotSet;
+  try {
+    read = ReadMasterParam(name, kMaxUrdfAnswerBytes, value);
+  } catch (const std::runtime_error& error) {
+    throw SceneError("urdf.param: parameter " + Quoted(name) + " cannot be read: " + error.what());
+  }
+  if (read == MasterParam::kTooLong) {
+    throw SceneError("urdf.param: parameter " + Quoted(name) + " is more than the limit of " +
+                     std::to_string(kMaxUrdfBytes) + " bytes (1 MB)");
+  }
+  return read == MasterParam::kRead;
 }
 
 std::string UrdfText(const UrdfSource& source, const UrdfParamLookup& lookup,

@@ -81,8 +81,9 @@ UrdfSource ParseUrdfSource(const XmlRpc::XmlRpcValue& urdf);
 // `lookup(name, &value)` is false when the parameter is not set.
 using UrdfParamLookup = std::function<bool(const std::string& name, XmlRpc::XmlRpcValue* value)>;
 
-// The parameter server as a UrdfParamLookup (ros::param::get; needs
-// ros::init and a master).
+// The parameter server as a UrdfParamLookup (ReadMasterParam; needs ros::init
+// and a master). Throws SceneError ("urdf.param: ...") when the master's
+// answer is too long for a text of kMaxUrdfBytes, unread, or cannot be had.
 bool LookupMasterParam(const std::string& name, XmlRpc::XmlRpcValue* value);
 
 // The URDF text of `source`: the xml itself, the file's contents (read as
