@@ -48,13 +48,15 @@ ServiceFront::ServiceFront(const ros::NodeHandle& private_nh, const NodeSettings
       requests_(private_nh_),
       spawn_service_(
           requests_.node_handle().advertiseService("spawn_body", &ServiceFront::OnSpawnBody, this)),
-      runtime_config_(requests_.node_handle(), settings, [this](const NodeSettings& next) {
-        requests_.OnSteppingThread([this, next] {
-          loop_.ApplyRuntimeSettings(next);
-          return true;
-        });
-        requests_.TrimMemorySoon();
-      }) {
+      runtime_config_(
+          requests_.node_handle(), settings,
+          [this](const NodeSettings& next) {
+            requests_.OnSteppingThread([this, next] {
+              loop_.ApplyRuntimeSettings(next);
+              return true;
+            });
+          },
+          [this] { requests_.TrimMemorySoon(); }) {
   const ros::TransportHints low_latency = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(private_nh_.subscribe("particle_wrench", kWrenchQueueSize,
                                                &ServiceFront::OnParticleWrench, this, low_latency));
