@@ -13,7 +13,6 @@
 #include <cstdlib>
 #include <cstring>
 #include <stdexcept>
-#include <utility>
 
 #include <ros/master.h>
 #include <ros/names.h>
@@ -120,7 +119,7 @@ std::size_t ContentLength(const std::string& header) {
 
 MasterParam ReadMasterParam(const std::string& name, std::size_t max_answer_bytes,
                             XmlRpcValue* value) {
-  const std::string host = ros::master::getHost();
+  const std::string& host = ros::master::getHost();
   const int port = static_cast<int>(ros::master::getPort());
   const auto deadline = std::chrono::steady_clock::now() + kAnswerTimeout;
   Connection master(host, port);
@@ -154,7 +153,7 @@ MasterParam ReadMasterParam(const std::string& name, std::size_t max_answer_byte
     throw std::runtime_error("the master's answer to getParam is not [code, status, value]");
   }
   if (static_cast<int>(result[0]) != 1) return MasterParam::kNotSet;
-  *value = std::move(result[2]);
+  *value = result[2];
   return MasterParam::kRead;
 }
 

@@ -44,11 +44,19 @@ std::optional<PackageUrl> SplitPackageUrl(const std::string& path) {
 }
 
 std::string PackageDirectory(const std::string& written, const std::string& package) {
-  const std::string directory = ros::package::getPath(package);
+  std::string directory = ros::package::getPath(package);
   if (directory.empty()) {
     throw SceneError(Named(written) + ": package " + Quoted(package) + " is not found");
   }
   return directory;
+}
+
+// A path ~spawn_body may not read: refused before anything is opened, and in
+// the same words whether the file exists or not.
+SceneError Refused(const std::string& written) {
+  return SceneError(Named(written) +
+                    ": ~spawn_body reads only files inside a package (package://) or under a "
+                    "directory of ~spawn_file_roots");
 }
 
 // Whether `path` is `directory` or below it, component by component (both
@@ -95,18 +103,13 @@ std::string UrdfFilePolicy::Read(const std::string& written) const {
 }
 
 std::string UrdfFilePolicy::ReadConfined(const std::string& written) const {
-  // Refused before anything is opened, and in the same words whether the
-  // file exists or not.
-  const SceneError refused(Named(written) +
-                           ": ~spawn_body reads only files inside a package (package://) "
-                           "or under a directory of ~spawn_file_roots");
   fs::path candidate;
   // Where the path, written and resolved, must lead: the package's directory
   // or a root, each as written and with its links resolved.
   std::vector<fs::path> directories;
   if (const std::optional<PackageUrl> url = SplitPackageUrl(written)) {
     const fs::path inside = fs::path(url->rest).lexically_normal();
-    if (inside.is_absolute() || inside.empty() || *inside.begin() == "..") throw refused;
+    if (inside.is_absolute() || inside.empty() || *inside.begin() == "..") throw Refused(written);
     const fs::path directory = PackageDirectory(written, url->package);
     candidate = directory / inside;
     directories.push_back(directory.lexically_normal());
@@ -124,11 +127,11 @@ std::string UrdfFilePolicy::ReadConfined(const std::string& written) const {
     }
     return false;
   };
-  if (!under_one(candidate)) throw refused;
+  if (!under_one(candidate)) throw Refused(written);
   // Inside, as written: whether it exists may be told from here on.
   const std::optional<fs::path> real = RealPath(candidate);
   if (!real) throw SceneError(Named(written) + " cannot be read: " + std::strerror(errno));
-  if (!under_one(*real)) throw refused;
+  if (!under_one(*real)) throw Refused(written);
   // No link is left in `real`: one in its place now is not followed.
   return ReadRegularFile(real->string(), kMaxUrdfBytes, Named(written), LastLink::kRefuse);
 }

@@ -1,6 +1,7 @@
 #include "rigid_body_sim/core/integrators/exact_free_flow.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
@@ -25,9 +26,20 @@ constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 // Theta series terms below this are dropped: the sums are >= 1 in size.
 constexpr double kNegligibleTerm = 0.25 * kEpsilon;
 
-template <typename T>
-bool SameBits(const T& a, const T& b) {
-  return std::memcmp(&a, &b, sizeof(T)) == 0;
+std::uint64_t Bits(double x) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &x, sizeof(bits));
+  return bits;
+}
+
+// Whether a and b hold the same doubles to the bit (the sign of 0 and NaNs
+// told apart), coefficient by coefficient.
+template <typename Derived>
+bool SameBits(const Eigen::MatrixBase<Derived>& a, const Eigen::MatrixBase<Derived>& b) {
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    if (Bits(a(i)) != Bits(b(i))) return false;
+  }
+  return true;
 }
 
 using Pair = ExactFreeFlow::Pair;
