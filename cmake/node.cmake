@@ -8,7 +8,8 @@ find_package(PkgConfig REQUIRED)
 pkg_check_modules(LIBYAML REQUIRED yaml-0.1)
 # Bodies from URDF: ROS's urdf parser (urdfdom underneath) reads the XML, and
 # roslib's ros::package resolves package:// paths. Only src/ros/urdf_body.cpp
-# includes them: no installed header does, so they are not exported.
+# and src/ros/urdf_file_policy.cpp include them: no installed header does, so
+# they are not exported.
 find_package(urdf REQUIRED)
 find_package(roslib REQUIRED)
 
@@ -31,6 +32,9 @@ add_library(rigid_body_sim_ros
   src/ros/yaml_value.cpp
   src/ros/yaml_sizing.cpp
   src/ros/urdf_body.cpp
+  src/ros/urdf_file_policy.cpp
+  src/ros/regular_file.cpp
+  src/ros/master_param.cpp
   src/ros/body_topics.cpp
   src/ros/log_thread.cpp
   src/ros/held_joint_states.cpp

@@ -60,6 +60,7 @@ catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_in
   test/ros/imu_noise_params_test.cpp test/ros/wrench_job_request_test.cpp
   test/ros/yaml_value_test.cpp test/ros/lockstep_gate_test.cpp
   test/ros/state_hash_worker_test.cpp test/ros/urdf_body_test.cpp
+  test/ros/urdf_file_policy_test.cpp
   test/ros/wrench_frame_test.cpp test/ros/scene_frames_test.cpp
   test/ros/static_frames_test.cpp)
 # urdf_body_test and scene_frames_test read config/quadrotor.urdf from the source tree.

@@ -10,7 +10,7 @@
 //   - every body state is finite with a unit quaternion (core/body_fault.h:
 //     the world freezes a body whose state would turn non-finite);
 //   - what the node publishes from it (ToPoseMsg, ToTwistMsg, ToBodyState,
-//     ToTransformMsg) is finite;
+//     ToFrameTransformMsg) is finite;
 //   - an accepted conversion names a body and particle in range and carries
 //     finite vectors and a finite start time.
 // An exception escaping CheckParticleWrench or the world is reported by
@@ -36,6 +36,7 @@
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_outputs.h"
 #include "rigid_body_sim/ros/body_state_request.h"
 #include "rigid_body_sim/ros/conversions.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
@@ -145,9 +146,10 @@ void CheckWorld(const core::World& world, const char* after) {
     const geometry_msgs::Pose pose = rigid_body_sim::ToPoseMsg(state);
     if (!Finite(pose.position) || !Finite(pose.orientation))
       Fail("ToPoseMsg not finite", world, i, after);
-    const geometry_msgs::Transform tf = rigid_body_sim::ToTransformMsg(state);
+    const geometry_msgs::Transform tf =
+        rigid_body_sim::ToFrameTransformMsg(model, state, core::FrameOrigin::kCom);
     if (!Finite(tf.translation) || !Finite(tf.rotation))
-      Fail("ToTransformMsg not finite", world, i, after);
+      Fail("ToFrameTransformMsg not finite", world, i, after);
     const geometry_msgs::Twist twist = rigid_body_sim::ToTwistMsg(model, state);
     if (!Finite(twist.linear) || !Finite(twist.angular))
       Fail("ToTwistMsg not finite", world, i, after);

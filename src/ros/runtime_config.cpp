@@ -1,6 +1,7 @@
 #include "rigid_body_sim/ros/runtime_config.h"
 
 #include <stdexcept>
+#include <utility>
 #include <vector>
 
 #include "rigid_body_sim/ros/log_thread.h"
@@ -41,8 +42,11 @@ std::optional<std::string> WhyNotApplicable(const NodeSettings& settings) {
 }
 
 RuntimeConfig::RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettings& in_force,
-                             ApplyFn apply)
-    : private_nh_(private_nh), in_force_(in_force), apply_(std::move(apply)) {
+                             ApplyFn apply, RequestFn on_request)
+    : private_nh_(private_nh),
+      in_force_(in_force),
+      apply_(std::move(apply)),
+      on_request_(std::move(on_request)) {
   const SimulationNodeConfig config = ToConfig(in_force_);
   // The server reads its first configuration from the parameter server, where
   // the .cfg keys gravity_x... are not set: write them all first, so that it
@@ -58,6 +62,7 @@ RuntimeConfig::RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettin
 }
 
 void RuntimeConfig::OnReconfigure(SimulationNodeConfig& config, std::uint32_t /*level*/) {
+  on_request_();
   const NodeSettings requested = WithConfig(in_force_, config);
   if (SameRuntimeKeys(requested, in_force_)) return;
   if (const std::optional<std::string> why = WhyNotApplicable(requested)) {

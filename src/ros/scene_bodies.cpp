@@ -160,7 +160,7 @@ std::string ReadNamespace(const XmlRpcValue& value) {
 // The entry's `urdf` body, if it has the key, read after the entry's other
 // keys are known to be allowed.
 std::optional<UrdfEntry> ReadUrdfKey(const XmlRpcValue& body, const std::string& name,
-                                     const UrdfParamLookup& lookup) {
+                                     const UrdfParamLookup& lookup, const UrdfFilePolicy& files) {
   CheckModelKeys(body);
   if (!body.hasMember("urdf")) return std::nullopt;
   CheckKeys(body, {"urdf"});
@@ -169,7 +169,7 @@ std::optional<UrdfEntry> ReadUrdfKey(const XmlRpcValue& body, const std::string&
   if (body.hasMember("sites")) {
     throw SceneError("sites cannot be given with urdf: its links are its sites (add a link)");
   }
-  return ReadUrdfEntry(body["urdf"], name, lookup);
+  return ReadUrdfEntry(body["urdf"], name, lookup, files);
 }
 
 // One entry of `bodies` named `name`, its `urdf` body already read if it has
@@ -217,8 +217,8 @@ SceneBody ReadBody(const XmlRpcValue& body, const std::string& name,
 
 }  // namespace
 
-SceneBody ParseBodyEntry(const XmlRpcValue& body, std::size_t index,
-                         const UrdfParamLookup& lookup) {
+SceneBody ParseBodyEntry(const XmlRpcValue& body, std::size_t index, const UrdfParamLookup& lookup,
+                         const UrdfFilePolicy& files) {
   std::string entry = "bodies[" + std::to_string(index) + "]";
   if (body.getType() != XmlRpcValue::TypeStruct) {
     throw SceneError(entry +
@@ -245,7 +245,7 @@ SceneBody ParseBodyEntry(const XmlRpcValue& body, std::size_t index,
   }
   std::optional<UrdfEntry> urdf;
   try {
-    urdf = ReadUrdfKey(body, name, lookup);
+    urdf = ReadUrdfKey(body, name, lookup, files);
   } catch (const std::exception& error) {
     throw SceneError(entry + ": " + error.what());
   }

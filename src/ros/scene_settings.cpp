@@ -9,6 +9,7 @@
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/runtime_keys.h"
 #include "rigid_body_sim/ros/scene_error.h"
+#include "rigid_body_sim/ros/urdf_file_policy.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -180,6 +181,8 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
       ReadCount(params, "threads", static_cast<double>(settings.threads), kMaxThreads));
   settings.lockstep = ReadLockstep(params);
   settings.shard = ReadShard(params);
+  settings.spawn_file_roots = params.StringList("spawn_file_roots");
+  CheckSpawnFileRoots(settings.spawn_file_roots);
   return settings;
 }
 

@@ -8,9 +8,9 @@
 namespace rigid_body_sim {
 
 UrdfEntry ReadUrdfEntry(const XmlRpc::XmlRpcValue& urdf, const std::string& name,
-                        const UrdfParamLookup& lookup) {
+                        const UrdfParamLookup& lookup, const UrdfFilePolicy& files) {
   const UrdfSource source = ParseUrdfSource(urdf);
-  UrdfBody body = ParseUrdfBody(UrdfText(source, lookup), source.root, name);
+  UrdfBody body = ParseUrdfBody(UrdfText(source, lookup, files), source.root, name);
   if (body.sites.size() > kMaxSitesPerBody) {
     throw SceneError("urdf: the body has " + std::to_string(body.sites.size()) +
                      " links, at most " + std::to_string(kMaxSitesPerBody) +

@@ -44,16 +44,19 @@ ServiceFront::ServiceFront(const ros::NodeHandle& private_nh, const NodeSettings
       world_frame_(settings.world_frame),
       shard_count_(settings.shard.count),
       private_nh_(private_nh),
+      spawn_files_(UrdfFilePolicy::UnderRoots(settings.spawn_file_roots)),
       requests_(private_nh_),
       spawn_service_(
           requests_.node_handle().advertiseService("spawn_body", &ServiceFront::OnSpawnBody, this)),
-      runtime_config_(requests_.node_handle(), settings, [this](const NodeSettings& next) {
-        requests_.OnSteppingThread([this, next] {
-          loop_.ApplyRuntimeSettings(next);
-          return true;
-        });
-        requests_.TrimMemorySoon();
-      }) {
+      runtime_config_(
+          requests_.node_handle(), settings,
+          [this](const NodeSettings& next) {
+            requests_.OnSteppingThread([this, next] {
+              loop_.ApplyRuntimeSettings(next);
+              return true;
+            });
+          },
+          [this] { requests_.TrimMemorySoon(); }) {
   const ros::TransportHints low_latency = ros::TransportHints().tcpNoDelay();
   subscribers_.push_back(private_nh_.subscribe("particle_wrench", kWrenchQueueSize,
                                                &ServiceFront::OnParticleWrench, this, low_latency));
@@ -219,7 +222,8 @@ bool ServiceFront::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response&
     try {
       const std::size_t index = editor_.body_count();
       if (index >= kMaxSceneBodies) throw SceneError(BodyLimitMessage(index));
-      body = ParseBodyEntry(XmlRpcFromYaml(request.body_yaml), index);
+      body =
+          ParseBodyEntry(XmlRpcFromYaml(request.body_yaml), index, LookupMasterParam, spawn_files_);
     } catch (const std::exception& error) {  // SceneError, or a model the core refuses
       message = error.what();
     }

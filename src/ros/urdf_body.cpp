@@ -1,21 +1,17 @@
 #include "rigid_body_sim/ros/urdf_body.h"
 
-#include <cerrno>
 #include <cmath>
-#include <cstring>
-#include <fstream>
 #include <mutex>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
 
 #include <console_bridge/console.h>
-#include <ros/package.h>
-#include <ros/param.h>
 #include <urdf/model.h>
 
 #include "rigid_body_sim/core/format_number.h"
 #include "rigid_body_sim/core/inertia.h"
+#include "rigid_body_sim/ros/master_param.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
 
@@ -87,6 +83,11 @@ struct PendingLink {
   urdf::LinkConstSharedPtr link;
   Eigen::Isometry3d T_root_link;
 };
+
+// The longest answer of the master taken for a `param` source: XML writes a
+// character of the text in at most 6 ("&quot;"), and the answer around it
+// is short.
+constexpr std::size_t kMaxUrdfAnswerBytes = 6 * kMaxUrdfBytes + 65536;
 
 std::string Quoted(const std::string& text) { return "'" + text + "'"; }
 
@@ -205,57 +206,29 @@ UrdfSource ParseUrdfSource(const XmlRpcValue& urdf) {
 }
 
 bool LookupMasterParam(const std::string& name, XmlRpcValue* value) {
-  return ros::param::get(name, *value);
+  MasterParam read = MasterParam::kNotSet;
+  try {
+    read = ReadMasterParam(name, kMaxUrdfAnswerBytes, value);
+  } catch (const std::runtime_error& error) {
+    throw SceneError("urdf.param: parameter " + Quoted(name) + " cannot be read: " + error.what());
+  }
+  if (read == MasterParam::kTooLong) {
+    throw SceneError("urdf.param: parameter " + Quoted(name) + " is more than the limit of " +
+                     std::to_string(kMaxUrdfBytes) + " bytes (1 MB)");
+  }
+  return read == MasterParam::kRead;
 }
 
-std::string ResolveUrdfPath(const std::string& path) {
-  static const std::string kPackageScheme = "package://";
-  if (path.compare(0, kPackageScheme.size(), kPackageScheme) == 0) {
-    const std::string rest = path.substr(kPackageScheme.size());
-    const std::size_t slash = rest.find('/');
-    if (slash == std::string::npos || slash == 0 || slash + 1 == rest.size()) {
-      throw SceneError("urdf.file " + Quoted(path) +
-                       ": a package URL must be package://PACKAGE/PATH");
-    }
-    const std::string package = rest.substr(0, slash);
-    const std::string package_path = ros::package::getPath(package);
-    if (package_path.empty()) {
-      throw SceneError("urdf.file " + Quoted(path) + ": package " + Quoted(package) +
-                       " is not found");
-    }
-    return package_path + rest.substr(slash);
-  }
-  if (path.empty() || path[0] != '/') {
-    throw SceneError("urdf.file " + Quoted(path) +
-                     " must be an absolute path or package://PACKAGE/PATH");
-  }
-  return path;
-}
-
-std::string UrdfText(const UrdfSource& source, const UrdfParamLookup& lookup) {
+std::string UrdfText(const UrdfSource& source, const UrdfParamLookup& lookup,
+                     const UrdfFilePolicy& files) {
   switch (source.kind) {
     case UrdfSource::Kind::kXml:
       if (source.value.size() > kMaxUrdfBytes) {
         throw SceneError("urdf.xml " + TooLong(source.value.size()));
       }
       return source.value;
-    case UrdfSource::Kind::kFile: {
-      const std::string path = ResolveUrdfPath(source.value);
-      std::ifstream file(path, std::ios::binary);
-      if (!file) {
-        throw SceneError("urdf.file " + Quoted(path) + " cannot be read: " + std::strerror(errno));
-      }
-      // One byte past the limit tells a file that is too long.
-      std::string text(kMaxUrdfBytes + 1, '\0');
-      file.read(&text[0], static_cast<std::streamsize>(text.size()));
-      if (file.bad()) throw SceneError("urdf.file " + Quoted(path) + " cannot be read");
-      text.resize(static_cast<std::size_t>(file.gcount()));
-      if (text.size() > kMaxUrdfBytes) {
-        throw SceneError("urdf.file " + Quoted(path) + " is more than the limit of " +
-                         std::to_string(kMaxUrdfBytes) + " bytes (1 MB)");
-      }
-      return text;
-    }
+    case UrdfSource::Kind::kFile:
+      return files.Read(source.value);
     case UrdfSource::Kind::kParam: {
       XmlRpcValue value;
       if (!lookup(source.value, &value)) {

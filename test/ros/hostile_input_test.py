@@ -10,6 +10,11 @@ back (VmHWM), and its resident memory read before and a moment after
   and the refusal names the limit;
 - the diagnostics' catch_up_limit_hits did not grow: no wake-up of the
   stepping loop came more than 0.1 s late while the request was read.
+URDF sources a spawn may not read (hostile_input.test sets ~spawn_file_roots
+to /tmp) are refused without telling whether the file exists, a FIFO at once
+with the next spawn served, and a 50 MB parameter within 64 MB beyond its
+size, its memory back 2 s later (within 16 MiB, as for the reconfiguration of
+100,000 NaNs).
 A table of the figures is printed (rostest keeps it in the test's log).
 Under the sanitizers (ASAN_OPTIONS set, scripts/sanitizers.sh) the node runs
 on ASan's allocator, whose quarantine keeps freed memory, and several times
@@ -17,7 +22,10 @@ slower: there the requests and their answers are checked, not the memory or
 the lateness.
 """
 import io
+import math
 import os
+import shutil
+import tempfile
 import time
 import unittest
 from xmlrpc.client import ServerProxy
@@ -36,6 +44,10 @@ NODE = '/rigid_body_sim'
 MIB = 1 << 20
 PEAK_BOUND = 64 * MIB     # beyond the request's own size
 GIVEN_BACK = 2 * MIB      # what a refused request may leave behind
+SETTLED_BACK = 16 * MIB   # what a refused source may leave behind 2 s later
+ANSWER_TIME_S = 10.0      # the longest a hostile request may wait for its answer
+ROBOT = ('<robot name="r"><link name="base"><inertial><mass value="1"/><inertia ixx="1" '
+         'ixy="0" ixz="0" iyy="1" iyz="0" izz="1"/></inertial></link></robot>')
 INSTRUMENTED = 'ASAN_OPTIONS' in os.environ
 
 
@@ -83,10 +95,11 @@ class HostileInput(unittest.TestCase):
 
     @classmethod
     def tearDownClass(cls):
-        print('\n%-28s %10s %10s %10s %10s %6s' % ('request', 'size MiB', 'before MiB', 'peak MiB',
-                                                  'after MiB', 'late'))
+        print('\n%-28s %10s %10s %10s %10s %6s %8s' % ('request', 'size MiB', 'before MiB',
+                                                      'peak MiB', 'after MiB', 'late',
+                                                      'answer s'))
         for row in cls.rows:
-            print('%-28s %10.2f %10.1f %10.1f %10.1f %6d' % row)
+            print('%-28s %10.2f %10.1f %10.1f %10.1f %6d %8.2f' % row)
 
     @classmethod
     def on_diagnostics(cls, msg):
@@ -112,21 +125,24 @@ class HostileInput(unittest.TestCase):
                     return int(line.split()[1]) * 1024
         raise AssertionError('%s not in /proc/%d/status' % (key, self.pid))
 
-    def measure(self, name, size, send):
+    def measure(self, name, size, send, settle_s=0.5):
         """Sends one request; checks and records the memory and lateness."""
         self.next_report()
         late_before = self.status('catch_up_limit_hits')
         with open('/proc/%d/clear_refs' % self.pid, 'w') as clear_refs:
             clear_refs.write('5')  # VmHWM back to VmRSS
         before = self.memory('VmRSS')
+        start = time.monotonic()
         response = send()
-        time.sleep(0.5)
+        answer_s = time.monotonic() - start
+        time.sleep(settle_s)
         peak, after = self.memory('VmHWM'), self.memory('VmRSS')
         self.next_report()
         late = self.status('catch_up_limit_hits') - late_before
-        self.rows.append((name, size / MIB, before / MIB, peak / MIB, after / MIB, late))
+        self.rows.append((name, size / MIB, before / MIB, peak / MIB, after / MIB, late, answer_s))
         if INSTRUMENTED:
             return response, 0, 0
+        self.assertLess(answer_s, ANSWER_TIME_S, name)
         self.assertLessEqual(peak - before, PEAK_BOUND + size, name)
         self.assertEqual(late, 0, '%s: %d wake-ups more than 0.1 s late' % (name, late))
         return response, before, after
@@ -165,6 +181,70 @@ class HostileInput(unittest.TestCase):
         size = 100000 * 30
         self.measure('reconfigure, 100,000 entries', size, lambda: reconfigure(config))
         self.assertEqual(rospy.get_param(NODE + '/gravity'), [0.0, 0.0, -1.0])
+
+    def test_3_a_reconfiguration_of_100000_nans_is_refused(self):
+        reconfigure = rospy.ServiceProxy(NODE + '/set_parameters', Reconfigure)
+        gravity = rospy.get_param(NODE + '/gravity')
+        config = Config(doubles=[DoubleParameter('gravity_z', math.nan)] * 100000)
+        response, before, after = self.measure('reconfigure, 100,000 NaNs', 100000 * 30,
+                                               lambda: reconfigure(config), settle_s=2.0)
+        self.assertEqual(rospy.get_param(NODE + '/gravity'), gravity)
+        self.assertFalse(any(math.isnan(d.value) for d in response.config.doubles))
+        self.assertLessEqual(after - before, SETTLED_BACK)
+
+    def spawn_file(self, path):
+        return self.spawn('{name: from_file, urdf: {file: "%s"}}' % path)
+
+    def refused_alike(self, existing, missing, words):
+        """Both paths refused in the same words, but for the path itself."""
+        answers = [self.spawn_file(path) for path in (existing, missing)]
+        for path, answer in zip((existing, missing), answers):
+            self.assertFalse(answer.success, path)
+            self.assertIn(words, answer.message, path)
+        self.assertEqual(answers[0].message.replace(existing, 'PATH'),
+                         answers[1].message.replace(missing, 'PATH'))
+
+    def test_5_files_outside_the_roots_are_refused_unopened(self):
+        words = 'reads only files inside a package (package://) or under a directory'
+        self.refused_alike('/etc/shadow', '/etc/rbs_no_such_file', words)
+        self.refused_alike('/tmp/../etc/passwd', '/tmp/../etc/rbs_no_such_file', words)
+        self.refused_alike('package://rigid_body_sim/../../../../../../etc/passwd',
+                           'package://rigid_body_sim/../../../../../../etc/rbs_no_such_file',
+                           words)
+        self.refused_alike('/dev/stdin', '/dev/rbs_no_such_device', words)
+
+    def test_5_a_fifo_under_a_root_is_refused_at_once(self):
+        directory = tempfile.mkdtemp(prefix='rbs_hostile_', dir='/tmp')
+        try:
+            fifo = os.path.join(directory, 'robot.urdf')
+            os.mkfifo(fifo)
+            start = time.monotonic()
+            answer = self.spawn_file(fifo)
+            self.assertLess(time.monotonic() - start, 2.0)
+            self.assertFalse(answer.success)
+            self.assertIn('is not a regular file (it is a FIFO)', answer.message)
+            robot = os.path.join(directory, 'robot_file.urdf')
+            with open(robot, 'w') as out:
+                out.write(ROBOT)
+            answer = self.spawn_file(robot)
+            self.assertTrue(answer.success, answer.message)
+            rospy.ServiceProxy(NODE + '/delete_body', DeleteBody)('from_file')
+        finally:
+            shutil.rmtree(directory)
+
+    def test_5_a_50_mb_urdf_parameter(self):
+        size = 50 * MIB
+        rospy.set_param('/rbs_big_urdf', 'x' * size)
+        try:
+            response, before, after = self.measure(
+                'urdf param of 50 MiB', size,
+                lambda: self.spawn('{name: big_urdf, urdf: {param: /rbs_big_urdf}}'),
+                settle_s=2.0)
+        finally:
+            rospy.delete_param('/rbs_big_urdf')
+        self.assertFalse(response.success)
+        self.assertIn('more than the limit of 1048576 bytes', response.message)
+        self.assertLessEqual(after - before, SETTLED_BACK)
 
     def test_4_a_large_step_with_wrenches(self):
         rospy.ServiceProxy(NODE + '/set_paused', SetBool)(True)

@@ -3,7 +3,8 @@
 
 An invalid scene or parameter (`bodies` not a list, a duplicate or empty
 name, a mass <= 0 or not finite, a position not of 3 finite numbers, a
-non-positive rate, `publish_rate` > `rate`, an unknown integrator) stops the
+non-positive rate, `publish_rate` > `rate`, an unknown integrator, a
+`spawn_file_roots` entry that is not an absolute directory) stops the
 node at start with a non-zero exit and one error line that names the offending
 entry and key.
 
@@ -23,13 +24,11 @@ itself with one FATAL line and roslaunch reporting the node's exit code 1;
 with `respawn:=true` the launch keeps running and the node is retried every
 0.5 s, one FATAL line each time.
 """
-import math
 import os
 import re
 import signal
 import subprocess
 import tempfile
-import time
 import unittest
 
 import rosgraph
@@ -330,6 +329,16 @@ class InvalidScene(unittest.TestCase):
         self.check_rejected('lockstep_timeout_zero',
                             {'lockstep': True, 'lockstep_publishers': ['/controller'],
                              'lockstep_timeout': 0.0, 'bodies': [good_body()]}, 'lockstep_timeout')
+
+    def test_spawn_file_roots_relative(self):
+        self.check_rejected('spawn_file_roots_relative',
+                            {'spawn_file_roots': ['urdf'], 'bodies': [good_body()]},
+                            'spawn_file_roots')
+
+    def test_spawn_file_roots_not_a_directory(self):
+        self.check_rejected('spawn_file_roots_not_a_directory',
+                            {'spawn_file_roots': ['/dev/null'], 'bodies': [good_body()]},
+                            'spawn_file_roots')
 
     def test_rate_above_a_nanosecond_lattice(self):
         self.check_rejected('rate_above_1e9', {'rate': 2e9, 'publish_rate': 1.0,

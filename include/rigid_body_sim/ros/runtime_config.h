@@ -31,14 +31,19 @@ class RuntimeConfig {
  public:
   // Called with the settings to apply, between two steps.
   using ApplyFn = std::function<void(const NodeSettings&)>;
+  // Called on each request, taken or refused, while it is served (e.g. to
+  // give its memory back once the server has answered it).
+  using RequestFn = std::function<void()>;
 
   // Serves ~set_parameters, ~parameter_descriptions and ~parameter_updates in
   // private_nh's namespace, on its callback queue, starting from `in_force`:
   // the node's settings, the one copy of the runtime keys, which must outlive
   // this server. It reads them on its queue's thread and never writes them;
   // `apply` changes them on the stepping thread while this thread waits for
-  // it, so the two never touch them at once.
-  RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettings& in_force, ApplyFn apply);
+  // it, so the two never touch them at once. `on_request` runs on the queue's
+  // thread for every request.
+  RuntimeConfig(const ros::NodeHandle& private_nh, const NodeSettings& in_force, ApplyFn apply,
+                RequestFn on_request);
 
  private:
   // dynamic_reconfigure's callback: `config` is what the server then reports
@@ -49,6 +54,7 @@ class RuntimeConfig {
   ros::NodeHandle private_nh_;
   const NodeSettings& in_force_;
   ApplyFn apply_;
+  RequestFn on_request_;
   boost::recursive_mutex mutex_;  // the server's; given so updateConfig is safe
   std::optional<dynamic_reconfigure::Server<SimulationNodeConfig>> server_;
 };

@@ -30,10 +30,12 @@ std::vector<SceneBody> ParseBodies(const XmlRpc::XmlRpcValue& bodies,
                                    const UrdfParamLookup& lookup = LookupMasterParam);
 
 // One entry of `bodies`, as it would be checked at index `index` of the
-// list. Throws SceneError ("bodies[i] (name 'n'): ...", "bodies[i]: ..."
-// while a urdf body's default name is not yet known).
+// list, its `urdf.file` read as `files` allows. Throws SceneError
+// ("bodies[i] (name 'n'): ...", "bodies[i]: ..." while a urdf body's default
+// name is not yet known).
 SceneBody ParseBodyEntry(const XmlRpc::XmlRpcValue& body, std::size_t index,
-                         const UrdfParamLookup& lookup = LookupMasterParam);
+                         const UrdfParamLookup& lookup = LookupMasterParam,
+                         const UrdfFilePolicy& files = UrdfFilePolicy::AnyPath());
 
 // The core's definitions of `bodies`, in order (copies share the models'
 // particles).

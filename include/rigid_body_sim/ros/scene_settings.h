@@ -52,6 +52,9 @@ struct NodeSettings : RuntimeKeys {
   std::size_t threads = core::WorldDef{}.threads;
   LockstepSettings lockstep;
   ShardSettings shard;
+  // Directories under which ~spawn_body may read urdf.file (absolute paths;
+  // none: package:// files only; urdf_file_policy.h).
+  std::vector<std::string> spawn_file_roots;
 };
 
 // Every private parameter of `private_nh` but the bodies and the IMU noise,

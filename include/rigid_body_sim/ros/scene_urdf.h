@@ -24,10 +24,10 @@ struct UrdfEntry {
 
 // The body of the `urdf` value `urdf`, named `name` ("" = the root link's):
 // its source (ParseUrdfSource), its text (UrdfText, a parameter read through
-// `lookup`) and its links (ParseUrdfBody). Throws SceneError "urdf...": any of
-// theirs, more than kMaxSitesPerBody links, a link name that is not a site
-// name (CheckSiteName).
+// `lookup`, a file as `files` allows) and its links (ParseUrdfBody). Throws SceneError "urdf...":
+// any of theirs, more than kMaxSitesPerBody links, a link name that is not a site name
+// (CheckSiteName).
 UrdfEntry ReadUrdfEntry(const XmlRpc::XmlRpcValue& urdf, const std::string& name,
-                        const UrdfParamLookup& lookup);
+                        const UrdfParamLookup& lookup, const UrdfFilePolicy& files);
 
 }  // namespace rigid_body_sim

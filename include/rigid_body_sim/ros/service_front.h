@@ -34,6 +34,7 @@
 #include "rigid_body_sim/ros/request_lane.h"
 #include "rigid_body_sim/ros/runtime_config.h"
 #include "rigid_body_sim/ros/scene_params.h"
+#include "rigid_body_sim/ros/urdf_file_policy.h"
 #include "rigid_body_sim/ros/world_editor.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
 
@@ -79,6 +80,7 @@ class ServiceFront {
   const std::string world_frame_;
   const std::uint32_t shard_count_;
   ros::NodeHandle private_nh_;
+  const UrdfFilePolicy spawn_files_;  // what urdf.file a spawned body may name
   std::vector<ros::Subscriber> subscribers_;
   std::vector<ros::ServiceServer> services_;
   // Last: their callbacks use everything above, and they stop first.

@@ -17,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/ros/urdf_file_policy.h"
 
 namespace rigid_body_sim {
 
@@ -80,20 +81,17 @@ UrdfSource ParseUrdfSource(const XmlRpc::XmlRpcValue& urdf);
 // `lookup(name, &value)` is false when the parameter is not set.
 using UrdfParamLookup = std::function<bool(const std::string& name, XmlRpc::XmlRpcValue* value)>;
 
-// The parameter server as a UrdfParamLookup (ros::param::get; needs
-// ros::init and a master).
+// The parameter server as a UrdfParamLookup (ReadMasterParam; needs ros::init
+// and a master). Throws SceneError ("urdf.param: ...") when the master's
+// answer is too long for a text of kMaxUrdfBytes, unread, or cannot be had.
 bool LookupMasterParam(const std::string& name, XmlRpc::XmlRpcValue* value);
 
-// The absolute path of `path`: itself when absolute, the package's directory
-// (ros::package::getPath) joined with the rest for package://pkg/rest. Throws
-// SceneError naming the path: a relative path, a package:// URL without a
-// file part, a package that ROS does not know.
-std::string ResolveUrdfPath(const std::string& path);
-
-// The URDF text of `source`: the xml itself, the file's contents or the
-// parameter's string, each at most kMaxUrdfBytes. Throws SceneError ("urdf:
-// ...") naming the file (cannot be read, too long) or the parameter (not
-// set, not a string, too long).
-std::string UrdfText(const UrdfSource& source, const UrdfParamLookup& lookup = LookupMasterParam);
+// The URDF text of `source`: the xml itself, the file's contents (read as
+// `files` allows) or the parameter's string, each at most kMaxUrdfBytes.
+// Throws SceneError ("urdf: ...") naming the file (refused, cannot be read,
+// not a regular file, too long) or the parameter (not set, not a string, too
+// long).
+std::string UrdfText(const UrdfSource& source, const UrdfParamLookup& lookup = LookupMasterParam,
+                     const UrdfFilePolicy& files = UrdfFilePolicy::AnyPath());
 
 }  // namespace rigid_body_sim

@@ -1,10 +1,11 @@
 #include "rigid_body_sim/core/integrators/exact_free_flow.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
-#include <boost/math/special_functions/ellint_rf.hpp>
+#include "rigid_body_sim/core/reference/carlson.h"
 
 // Derivation. TorqueFreeMotion gives Π = (A_c cn, A_2 sn, A_d dn)(u | k),
 // u = νt + u0, and ψ(t) = ψ̇_0 t + gain (Π3(u) − Π3(u0)), Π3(u) = Π(n; am u | k)
@@ -25,17 +26,20 @@ constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 // Theta series terms below this are dropped: the sums are >= 1 in size.
 constexpr double kNegligibleTerm = 0.25 * kEpsilon;
 
-// NaN where Boost cannot evaluate (a non-finite state): the World freezes
-// that body, and nothing throws through a step.
-using NanOnError = boost::math::policies::policy<
-    boost::math::policies::domain_error<boost::math::policies::ignore_error>,
-    boost::math::policies::pole_error<boost::math::policies::ignore_error>,
-    boost::math::policies::overflow_error<boost::math::policies::ignore_error>,
-    boost::math::policies::evaluation_error<boost::math::policies::ignore_error>>;
+std::uint64_t Bits(double x) {
+  std::uint64_t bits = 0;
+  std::memcpy(&bits, &x, sizeof(bits));
+  return bits;
+}
 
-template <typename T>
-bool SameBits(const T& a, const T& b) {
-  return std::memcmp(&a, &b, sizeof(T)) == 0;
+// Whether a and b hold the same doubles to the bit (the sign of 0 and NaNs
+// told apart), coefficient by coefficient.
+template <typename Derived>
+bool SameBits(const Eigen::MatrixBase<Derived>& a, const Eigen::MatrixBase<Derived>& b) {
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    if (Bits(a(i)) != Bits(b(i))) return false;
+  }
+  return true;
 }
 
 using Pair = ExactFreeFlow::Pair;
@@ -164,8 +168,7 @@ bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& mod
   const double cosine = 1.0 / secant;
   // β = F(atan t | k').
   const double beta =
-      sine * boost::math::ellint_rf(cosine * cosine, 1.0 - complementary_squared * sine * sine, 1.0,
-                                    NanOnError());
+      sine * CarlsonRF(cosine * cosine, 1.0 - complementary_squared * sine * sine, 1.0);
   const double w = M_PI * beta / (2.0 * quarter_period);
 
   terms_ = 0;

@@ -4,8 +4,7 @@
 #include <limits>
 #include <stdexcept>
 
-#include <boost/math/special_functions/ellint_rf.hpp>
-#include <boost/math/special_functions/ellint_rj.hpp>
+#include "rigid_body_sim/core/reference/carlson.h"
 
 // Derivation. Euler: Π̇ = Π × ω, ω_k = Π_k/λ_k; G² = |Π|², 2E = Σ Π_k²/λ_k.
 // With D1 = G² − 2Eλ1, D3 = 2Eλ3 − G², D2 = G² − 2Eλ2 (each summed from
@@ -25,22 +24,6 @@ namespace rigid_body_sim::core {
 namespace {
 
 constexpr double kSymmetricTolerance = 1e-12;
-
-// NaN instead of an exception where Boost cannot evaluate (arguments out of
-// range after an absurd torque): the world then freezes that body as
-// non-finite, and nothing throws through a simulation step.
-using NanOnError = boost::math::policies::policy<
-    boost::math::policies::domain_error<boost::math::policies::ignore_error>,
-    boost::math::policies::pole_error<boost::math::policies::ignore_error>,
-    boost::math::policies::overflow_error<boost::math::policies::ignore_error>,
-    boost::math::policies::evaluation_error<boost::math::policies::ignore_error>>;
-
-double CarlsonRF(double x, double y, double z) {
-  return boost::math::ellint_rf(x, y, z, NanOnError());
-}
-double CarlsonRJ(double x, double y, double z, double p) {
-  return boost::math::ellint_rj(x, y, z, p, NanOnError());
-}
 
 // asin(q sin φ) for 0 <= q < 1 given 1 − q: near ±1 the argument is formed as
 // 1 ∓ q sin φ = (1 − q) + 2q sin²(π/4 ∓ φ/2), so that the angle keeps full
