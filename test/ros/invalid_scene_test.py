@@ -23,13 +23,11 @@ itself with one FATAL line and roslaunch reporting the node's exit code 1;
 with `respawn:=true` the launch keeps running and the node is retried every
 0.5 s, one FATAL line each time.
 """
-import math
 import os
 import re
 import signal
 import subprocess
 import tempfile
-import time
 import unittest
 
 import rosgraph
