@@ -4,8 +4,9 @@ overruns beyond this machine's noise, free (1) and each pushed by one held force
 import math
 import time
 
+from generated_scene import make_scene
 from node_load_push import push_every_body
-from node_load_run import NOISE_OVERRUNS_PER_S, NodeRun, machine_floor, make_scene
+from node_load_run import NOISE_OVERRUNS_PER_S, NodeRun, machine_floor
 
 
 def capacity_run(bench, n, warmup, window, pushed=False):

@@ -5,8 +5,9 @@ import time
 
 import rospy
 
+from generated_scene import make_scene
 from node_harness import NS
-from node_load_run import NodeRun, make_scene
+from node_load_run import NodeRun
 
 
 class RawCounter:

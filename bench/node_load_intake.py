@@ -8,8 +8,9 @@ import time
 import rospy
 from rigid_body_sim.msg import ParticleWrench, ParticleWrenchArray
 
+from generated_scene import make_scene
 from node_harness import NS
-from node_load_run import NodeRun, make_scene
+from node_load_run import NodeRun
 
 
 class Preserialized(ParticleWrenchArray):
@@ -65,7 +66,8 @@ def publish_at(pub, msg, hz, duration_s, stop):
 def intake_run(bench, n_bodies, k, hz, warmup, window):
     msg = wrench_array(k, n_bodies)
     pub = rospy.Publisher(NS + "/particle_wrenches", ParticleWrenchArray, queue_size=1000, tcp_nodelay=True)
-    with NodeRun(bench, make_scene(n_bodies, 1000, 100, bench.per_body_topics), "intake_%d_%d" % (k, int(hz))) as run:
+    scene = make_scene(n_bodies, 1000, 100, bench.per_body_topics)
+    with NodeRun(bench, scene, "intake_%d_%d" % (k, int(hz))) as run:
         deadline = time.monotonic() + 10
         while pub.get_num_connections() == 0 and time.monotonic() < deadline:
             time.sleep(0.05)

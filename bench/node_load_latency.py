@@ -10,8 +10,9 @@ import time
 import rospy
 from rigid_body_sim.msg import BodyStateArray, ParticleWrench
 
+from generated_scene import make_scene
 from node_harness import NS, CpuWindow
-from node_load_run import NodeRun, make_scene
+from node_load_run import NodeRun
 
 
 class MomentumWatcher:

@@ -10,9 +10,10 @@ import rospy
 from rigid_body_sim.srv import Step
 from std_srvs.srv import SetBool
 
+from generated_scene import make_scene
 from node_harness import CLK_TCK, NS, devel_program, proc_cpu_ticks
 from node_load_push import push_every_body
-from node_load_run import NodeRun, make_scene
+from node_load_run import NodeRun
 
 
 STEP_COST_BODIES = 1000

@@ -56,6 +56,7 @@ import threading
 import time
 
 from bench_report import cpu_model, fmt, git_head, md_table
+from generated_scene import make_scene
 from node_harness import NODE_NAME, NS, Processes, add_node_bench_arguments, devel_program, rss_kib, write_results
 
 
@@ -93,22 +94,6 @@ def log(text):
     print("[%6.1f s] %s" % (time.monotonic() - T_START, text), file=sys.stderr, flush=True)
 
 
-def make_scene(n_bodies, per_body_topics):
-    """N boxes of 2x2x2 particles on a grid, all turning and drifting (as node_load.py's scenes)."""
-    import random
-    bodies = []
-    side = max(1, int(math.ceil(n_bodies ** (1.0 / 3.0))))
-    rng = random.Random(n_bodies)
-    for i in range(n_bodies):
-        x, y, z = i % side, (i // side) % side, i // (side * side)
-        bodies.append({"name": "b%d" % i, "shape": "box", "mass": 1.0, "size": [0.2, 0.15, 0.1],
-                       "resolution": 2, "position": [0.5 * x, 0.5 * y, 0.5 * z],
-                       "linear_velocity": [0.01, 0.0, 0.0],
-                       "angular_velocity": [rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(1, 3)]})
-    return {"rate": 1000.0, "publish_rate": ARGS.publish_rate, "real_time_factor": 1.0, "gravity": [0.0, 0.0, 0.0],
-            "status_period": 0.0, "per_body_topics": per_body_topics, "bodies": bodies}
-
-
 # ------------------------------------------------------------- one trial
 
 def run_one_trial():
@@ -125,7 +110,7 @@ def run_one_trial():
         rospy.init_node("startup_bench", anonymous=True, disable_signals=True)
         diag = Diagnostics()
         n = ARGS.bodies
-        rospy.set_param(NS, make_scene(n, per_body_topics))
+        rospy.set_param(NS, make_scene(n, 1000, ARGS.publish_rate, per_body_topics))
 
         first = {}
         lock = threading.Lock()
