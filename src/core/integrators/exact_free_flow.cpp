@@ -1,6 +1,7 @@
 #include "rigid_body_sim/core/integrators/exact_free_flow.h"
 
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <limits>
 
@@ -33,9 +34,20 @@ using NanOnError = boost::math::policies::policy<
     boost::math::policies::overflow_error<boost::math::policies::ignore_error>,
     boost::math::policies::evaluation_error<boost::math::policies::ignore_error>>;
 
-template <typename T>
-bool SameBits(const T& a, const T& b) {
-  return std::memcmp(&a, &b, sizeof(T)) == 0;
+// The bits of x: the same for the same double, a NaN included; 0 and -0 differ.
+std::uint64_t Bits(double x) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &x, sizeof(bits));
+  return bits;
+}
+
+// Whether two Eigen vectors hold the same bits, coefficient by coefficient.
+template <typename Vector>
+bool SameBits(const Vector& a, const Vector& b) {
+  for (Eigen::Index i = 0; i < a.size(); ++i) {
+    if (Bits(a.coeff(i)) != Bits(b.coeff(i))) return false;
+  }
+  return true;
 }
 
 using Pair = ExactFreeFlow::Pair;
