@@ -31,86 +31,94 @@ parser.add_argument("--out", default=os.path.join(REPO, "bench", "results", "flo
 args = parser.parse_args()
 workspace = reexec_in_workspace(args.workspace, args.port)
 
-import rospy  # noqa: E402  (in the workspace's environment)
-from rigid_body_sim.msg import BodyStateArray  # noqa: E402
-from rigid_body_sim.srv import Step  # noqa: E402
-from std_srvs.srv import SetBool  # noqa: E402
 
-wrench_flood = devel_program(workspace, "wrench_flood")
-launch = launch_default_scene(args.port)
-try:
-    rospy.init_node("flood_driver", anonymous=True)
-    diagnostics = Diagnostics()
-    latest = diagnostics.latest  # the node's newest "simulation" status
-    names, counts = wait_for_scene()
-    pid = node_pid()
+def main():
+    """Floods the node, checks the held wrenches and writes the report."""
+    # The package's messages import once the script runs in the workspace's environment.
+    import rospy
+    from rigid_body_sim.msg import BodyStateArray
+    from rigid_body_sim.srv import Step
+    from std_srvs.srv import SetBool
 
-    while "overruns" not in latest:
-        time.sleep(0.2)
-    overruns_before = int(latest["overruns"])
-    rate_per_array = args.arrays / args.entries
-    flood = subprocess.Popen([wrench_flood, "top", str(counts["top"]),
-                              str(rate_per_array), str(args.entries), "box", str(counts["box"]),
-                              str(args.singles), str(args.duration)],
-                             stdout=subprocess.PIPE, text=True)
-    rss, factors = [], []
-    while flood.poll() is None:
+    wrench_flood = devel_program(workspace, "wrench_flood")
+    launch = launch_default_scene(args.port)
+    try:
+        rospy.init_node("flood_driver", anonymous=True)
+        diagnostics = Diagnostics()
+        latest = diagnostics.latest  # the node's newest "simulation" status
+        names, counts = wait_for_scene()
+        pid = node_pid()
+
+        while "overruns" not in latest:
+            time.sleep(0.2)
+        overruns_before = int(latest["overruns"])
+        rate_per_array = args.arrays / args.entries
+        flood = subprocess.Popen([wrench_flood, "top", str(counts["top"]),
+                                  str(rate_per_array), str(args.entries), "box", str(counts["box"]),
+                                  str(args.singles), str(args.duration)],
+                                 stdout=subprocess.PIPE, text=True)
+        rss, factors = [], []
+        while flood.poll() is None:
+            time.sleep(1.0)
+            rss.append(rss_kib(pid))
+            factors.append(float(latest.get("real_time_factor_achieved", "nan")))
+        report = flood.stdout.read().splitlines()
+        sent_line = report[0]
+        last = {}
+        for line in report[1:]:
+            _, body, particle, force = line.split()
+            last.setdefault(body, 0.0)
+            last[body] += float(force)
+        time.sleep(2.0)
+        overruns = int(latest["overruns"]) - overruns_before
+
+        # Each body's held force is the sum of the last force.x per particle (world
+        # x): the momentum change between two single steps, over dt.
+        published = {}
+        rospy.Subscriber("/rigid_body_sim/bodies", BodyStateArray,
+                         lambda m: published.update({round(m.header.stamp.to_sec(), 6): m}))
         time.sleep(1.0)
-        rss.append(rss_kib(pid))
-        factors.append(float(latest.get("real_time_factor_achieved", "nan")))
-    report = flood.stdout.read().splitlines()
-    sent_line = report[0]
-    last = {}
-    for line in report[1:]:
-        _, body, particle, force = line.split()
-        last.setdefault(body, 0.0)
-        last[body] += float(force)
-    time.sleep(2.0)
-    overruns = int(latest["overruns"]) - overruns_before
+        rospy.ServiceProxy("/rigid_body_sim/set_paused", SetBool)(True)
+        step = rospy.ServiceProxy("/rigid_body_sim/step", Step)
 
-    # Each body's held force is the sum of the last force.x per particle (world
-    # x): the momentum change between two single steps, over dt.
-    published = {}
-    rospy.Subscriber("/rigid_body_sim/bodies", BodyStateArray,
-                     lambda m: published.update({round(m.header.stamp.to_sec(), 6): m}))
-    time.sleep(1.0)
-    rospy.ServiceProxy("/rigid_body_sim/set_paused", SetBool)(True)
-    step = rospy.ServiceProxy("/rigid_body_sim/step", Step)
+        def stepped_state():
+            stamp = round(step(1).sim_time, 6)
+            deadline = time.time() + 5.0
+            while stamp not in published and time.time() < deadline:
+                time.sleep(0.01)
+            return published[stamp]
 
-    def stepped_state():
-        stamp = round(step(1).sim_time, 6)
-        deadline = time.time() + 5.0
-        while stamp not in published and time.time() < deadline:
-            time.sleep(0.01)
-        return published[stamp]
+        before = stepped_state()
+        after = stepped_state()
+        dt = 1e-3
+        checks = []
+        for body in ("top", "box"):
+            i = names.index(body)
+            held = (after.bodies[i].linear_momentum.x - before.bodies[i].linear_momentum.x) / dt
+            checks.append((body, last[body], held, abs(held - last[body]) <= 1e-9 * max(1.0, abs(last[body]))))
 
-    before = stepped_state()
-    after = stepped_state()
-    dt = 1e-3
-    checks = []
-    for body in ("top", "box"):
-        i = names.index(body)
-        held = (after.bodies[i].linear_momentum.x - before.bodies[i].linear_momentum.x) / dt
-        checks.append((body, last[body], held, abs(held - last[body]) <= 1e-9 * max(1.0, abs(last[body]))))
+        half = len(rss) // 2
+        lines = [
+            "| figure | value |", "|---|---|",
+            "| load sent | %s |" % sent_line,
+            "| overruns during the flood | %d |" % overruns,
+            "| achieved real-time factor (min, median over 1 s windows) | %.3f, %.3f |" % (
+                min(factors), sorted(factors)[len(factors) // 2]),
+            "| node RSS first half max / second half max [KiB] | %d / %d |" % (max(rss[:half]), max(rss[half:])),
+            "| node RSS start / end [KiB] | %d / %d |" % (rss[0], rss[-1]),
+        ]
+        for body, expected, held, ok in checks:
+            lines.append("| `%s` held force x, last sent / measured [N] | %.9g / %.9g (%s) |" % (
+                body, expected, held, "ok" if ok else "MISMATCH"))
+        lines.append("| load average at the end | %s |" % open("/proc/loadavg").read().split()[0])
+        text = "\n".join(lines) + "\n"
+        print(text)
+        os.makedirs(os.path.dirname(args.out), exist_ok=True)
+        open(args.out, "w").write(text)
+        sys.exit(0 if all(c[3] for c in checks) else 1)
+    finally:
+        stop_launch(launch)
 
-    half = len(rss) // 2
-    lines = [
-        "| figure | value |", "|---|---|",
-        "| load sent | %s |" % sent_line,
-        "| overruns during the flood | %d |" % overruns,
-        "| achieved real-time factor (min, median over 1 s windows) | %.3f, %.3f |" % (
-            min(factors), sorted(factors)[len(factors) // 2]),
-        "| node RSS first half max / second half max [KiB] | %d / %d |" % (max(rss[:half]), max(rss[half:])),
-        "| node RSS start / end [KiB] | %d / %d |" % (rss[0], rss[-1]),
-    ]
-    for body, expected, held, ok in checks:
-        lines.append("| `%s` held force x, last sent / measured [N] | %.9g / %.9g (%s) |" % (
-            body, expected, held, "ok" if ok else "MISMATCH"))
-    lines.append("| load average at the end | %s |" % open("/proc/loadavg").read().split()[0])
-    text = "\n".join(lines) + "\n"
-    print(text)
-    os.makedirs(os.path.dirname(args.out), exist_ok=True)
-    open(args.out, "w").write(text)
-    sys.exit(0 if all(c[3] for c in checks) else 1)
-finally:
-    stop_launch(launch)
+
+if __name__ == "__main__":
+    main()

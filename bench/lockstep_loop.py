@@ -73,7 +73,10 @@ def measure(procs, log_dir, name, lockstep, publish_rate):
     node = procs.start(["taskset", "-c", str(ARGS.node_cpu),
                         devel_program(os.environ["RBS_BENCH_WS"], "rigid_body_sim_node"),
                         "__name:=" + NODE_NAME], os.path.join(log_dir, name + ".log"))
-    alive = lambda: node.poll() is None  # noqa: E731
+
+    def alive():
+        return node.poll() is None
+
     first = diag.wait_next(30.0, alive)  # the first report: the node steps
     start = diag.wait_next(10.0, alive)
     cycles0 = cycles[0]

@@ -13,10 +13,8 @@ import math
 import sys
 from collections import defaultdict
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt  # noqa: E402
+from matplotlib import colormaps
+from matplotlib.figure import Figure
 
 source = sys.argv[1] if len(sys.argv) > 1 else "bench/results/work_precision.csv"
 target = sys.argv[2] if len(sys.argv) > 2 else "bench/results/work_precision.png"
@@ -48,13 +46,15 @@ colours = {}
 for kind, palette, size in (("ours", "tab10", 10), ("fixed", "tab20", 20), ("adaptive", "Dark2", 8),
                             ("closed_form", "Set1", 9)):
     methods = list(dict.fromkeys(r["method"] for r in rows if category(r) == kind))
-    colours.update({m: plt.get_cmap(palette)(i % size) for i, m in enumerate(methods)})
+    colours.update({m: colormaps[palette](i % size) for i, m in enumerate(methods)})
 
 
 def draw(x_key, x_label, title, path, kept):
     columns = 3
     lines = math.ceil(len(scenes) / columns)
-    figure, axes = plt.subplots(lines, columns, figsize=(6 * columns, 4.6 * lines + 1.2), squeeze=False)
+    # A Figure of its own (no pyplot): saved through Agg, no display needed.
+    figure = Figure(figsize=(6 * columns, 4.6 * lines + 1.2))
+    axes = figure.subplots(lines, columns, squeeze=False)
     legend = {}  # category → {method: handle}
     for panel, scene in zip(axes.flat, scenes):
         series = defaultdict(list)

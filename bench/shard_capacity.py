@@ -54,8 +54,6 @@ LOG_DIR = tempfile.mkdtemp(prefix="shard_capacity_")
 NOISE_OVERRUNS_PER_S = 1.0
 ROWS = []
 
-import rospy  # noqa: E402
-
 
 def log(text):
     print(text, flush=True)
@@ -84,6 +82,7 @@ def floor_overruns(rows):
 
 def run(n, shards):
     """Every process of one run: (passed, rows)."""
+    import rospy  # importable once the script runs in the workspace's environment
     procs = Processes()
     names = ["rigid_body_sim"] if shards == 1 else ["rigid_body_sim_%d" % k for k in range(shards)]
     cpus = [ARGS.node_cpu] if shards == 1 else [k % CORES for k in range(shards)]
@@ -96,7 +95,10 @@ def run(n, shards):
                                  os.path.join(LOG_DIR, "%s_%d.log" % (name, n))))
     rows = []
     try:
-        alive = lambda: all(p.poll() is None for p in nodes)  # noqa: E731
+
+        def alive():
+            return all(p.poll() is None for p in nodes)
+
         # A node whose steps take longer than dt starves roscpp's threads
         # (its stepping thread outranks them under SCHED_FIFO): no report
         # comes, and N is too large.
@@ -168,6 +170,7 @@ def capacity(shards):
 
 
 def main():
+    import rospy
     os.sched_setaffinity(0, {ARGS.bench_cpu})
     procs = Processes()
     start = time.monotonic()

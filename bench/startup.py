@@ -55,8 +55,9 @@ import tempfile
 import threading
 import time
 
-from node_harness import (NODE_NAME, NS, REPO, Processes, add_node_bench_arguments, devel_program,
-                          rss_kib, write_results)
+from bench_report import cpu_model, fmt, git_head, md_table
+from generated_scene import make_scene
+from node_harness import NODE_NAME, NS, Processes, add_node_bench_arguments, devel_program, rss_kib, write_results
 
 
 def parse_args():
@@ -93,22 +94,6 @@ def log(text):
     print("[%6.1f s] %s" % (time.monotonic() - T_START, text), file=sys.stderr, flush=True)
 
 
-def make_scene(n_bodies, per_body_topics):
-    """N boxes of 2x2x2 particles on a grid, all turning and drifting (as node_load.py's scenes)."""
-    import random
-    bodies = []
-    side = max(1, int(math.ceil(n_bodies ** (1.0 / 3.0))))
-    rng = random.Random(n_bodies)
-    for i in range(n_bodies):
-        x, y, z = i % side, (i // side) % side, i // (side * side)
-        bodies.append({"name": "b%d" % i, "shape": "box", "mass": 1.0, "size": [0.2, 0.15, 0.1],
-                       "resolution": 2, "position": [0.5 * x, 0.5 * y, 0.5 * z],
-                       "linear_velocity": [0.01, 0.0, 0.0],
-                       "angular_velocity": [rng.uniform(-1, 1), rng.uniform(-1, 1), rng.uniform(1, 3)]})
-    return {"rate": 1000.0, "publish_rate": ARGS.publish_rate, "real_time_factor": 1.0, "gravity": [0.0, 0.0, 0.0],
-            "status_period": 0.0, "per_body_topics": per_body_topics, "bodies": bodies}
-
-
 # ------------------------------------------------------------- one trial
 
 def run_one_trial():
@@ -125,7 +110,7 @@ def run_one_trial():
         rospy.init_node("startup_bench", anonymous=True, disable_signals=True)
         diag = Diagnostics()
         n = ARGS.bodies
-        rospy.set_param(NS, make_scene(n, per_body_topics))
+        rospy.set_param(NS, make_scene(n, 1000, ARGS.publish_rate, per_body_topics))
 
         first = {}
         lock = threading.Lock()
@@ -163,7 +148,9 @@ def run_one_trial():
         t0 = time.monotonic()
         node = procs.start(argv, node_log)
         state["pid"] = node.pid
-        alive = lambda: node.poll() is None  # noqa: E731
+
+        def alive():
+            return node.poll() is None
 
         if not got_both.wait(120.0) or not alive():
             raise RuntimeError("no first ~bodies and /tf within 120 s (node log %s)" % node_log)
@@ -325,29 +312,6 @@ def median(rows, key):
     return statistics.median(values) if values else float("nan")
 
 
-def fmt(value, digits=1):
-    if isinstance(value, float):
-        return "n/a" if math.isnan(value) else "%.*f" % (digits, value)
-    return str(value)
-
-
-def git_head():
-    head = subprocess.run(["git", "-C", REPO, "rev-parse", "--short", "HEAD"], capture_output=True,
-                          text=True).stdout.strip()
-    return head or "unknown"
-
-
-def cpu_model():
-    try:
-        with open("/proc/cpuinfo") as f:
-            for line in f:
-                if line.startswith("model name"):
-                    return line.split(":", 1)[1].strip()
-    except OSError:
-        pass
-    return "unknown CPU"
-
-
 def write_report(rows, elapsed, command):
     n = ARGS.bodies
     md = ["# Start-up at %d bodies (`bench/startup.py`)" % n, ""]
@@ -373,14 +337,13 @@ def write_report(rows, elapsed, command):
               "RSS with all topics MB", "overruns while advertising", "steps while advertising",
               "step max while advertising us", "RTF min while advertising", "steady overruns (window s)",
               "steady step mean / max us", "RSS at end MB"]
-    md.append("| " + " | ".join(header) + " |")
-    md.append("|" + "|".join("---" for _ in header) + "|")
+    table = []
     for value in (True, False):
         sel = [r for r in rows if r["per_body_topics"] == value]
         if not sel:
             continue
         adv = value
-        md.append("| " + " | ".join([
+        table.append([
             "true" if value else "false", str(len(sel)),
             fmt(median(sel, "run_s"), 2), fmt(median(sel, "first_bodies_s"), 2), fmt(median(sel, "first_tf_s"), 2),
             fmt(median(sel, "rss_first_mb"), 0),
@@ -394,7 +357,8 @@ def write_report(rows, elapsed, command):
             fmt(median(sel, "adv_rtf_min"), 3) if adv else "-",
             "%s (%s)" % (fmt(median(sel, "steady_overruns"), 0), fmt(median(sel, "steady_window_s"), 0)),
             "%s / %s" % (fmt(median(sel, "steady_step_mean_us"), 0), fmt(median(sel, "steady_step_max_us"), 0)),
-            fmt(median(sel, "rss_end_mb"), 0)]) + " |")
+            fmt(median(sel, "rss_end_mb"), 0)])
+    md.append(md_table(header, table))
     md.append("")
     md.append("Columns: *Run() entered* = the wall stamp of the node's start line (\"N bodies, integrator ...\", "
               "logged when the scene is read, the World built and the node's own topics advertised) minus the "

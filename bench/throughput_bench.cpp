@@ -72,7 +72,7 @@ void ReportPerBodyStep(int bodies, benchmark::State* state) {
 // leaves the schemes' fast paths; so every 1,000 steps (1 s) the states go
 // back to the first ones, untimed, and every run times the same motion. The
 // first step from those states is untimed too: there exact_free builds each
-// body's flow (~6 µs a body), which a long run does once, and for the other
+// body's flow (a costly step), which a long run does once, and for the other
 // schemes it is a step like the rest.
 void TimeSteps(World* world, benchmark::State* state) {
   constexpr std::size_t kStepsPerRestart = 1000;

@@ -42,21 +42,24 @@ rbs_source_devel() {
   set -u
 }
 
+# Prints the merge-base of HEAD and origin/main, else of HEAD and main;
+# nothing when there is neither.
+rbs_main_base() {
+  local ref
+  for ref in origin/main main; do
+    if git -C "$repo" rev-parse --verify -q "$ref^{commit}" >/dev/null; then
+      git -C "$repo" merge-base HEAD "$ref"
+      return 0
+    fi
+  done
+}
+
 # Prints the C++ files of src/, include/, test/, bench/ and fuzz/ (relative
-# to the checkout, one a line) that differ from REV ($1; default: the merge-base of HEAD and
-# origin/main, else main), committed or not, and the new untracked ones;
-# prints nothing when there is no such base. format_check.sh --changed and
-# tidy_check.sh use it.
+# to the checkout, one a line) that differ from the commit BASE ($1),
+# committed or not, and the new untracked ones; prints nothing when BASE is
+# empty. format_check.sh --changed and tidy_check.sh use it.
 rbs_changed_cxx() {
-  local ref base="${1:-}"
-  if [ -z "$base" ]; then
-    for ref in origin/main main; do
-      if git -C "$repo" rev-parse --verify -q "$ref^{commit}" >/dev/null; then
-        base="$(git -C "$repo" merge-base HEAD "$ref")"
-        break
-      fi
-    done
-  fi
+  local base="$1"
   [ -n "$base" ] || return 0
   {
     git -C "$repo" diff --name-only --diff-filter=ACMR "$base" -- src include test bench fuzz

@@ -16,7 +16,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 cd "$repo"
 files=()
 if [ "${1:-}" = "--changed" ]; then
-  mapfile -t files < <(rbs_changed_cxx)
+  mapfile -t files < <(rbs_changed_cxx "$(rbs_main_base)")
   if [ ${#files[@]} -eq 0 ]; then
     echo "format_check: OK (no C++ changed since main)"
     exit 0

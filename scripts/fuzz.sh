@@ -51,7 +51,7 @@ mkdir -p "$out/obj"
 # -O2: at -O1 Eigen's fixed-size products stay loops and calls, which the
 # sanitizers and the coverage instrumentation then cost on every element.
 cxxflags=(-std=c++17 -O2 -g -fno-omit-frame-pointer
-  -fsanitize=address,undefined -fno-sanitize-recover=all
+  "-fsanitize=address,undefined" -fno-sanitize-recover=all
   -I"$repo/include" -I"$ws/devel/include" -isystem /usr/include/eigen3 -DNDEBUG)
 # The core's integer comparisons are loop bounds and counts, not input
 # checks: tracing them for the fuzzer's comparison hints cost most of the
@@ -70,6 +70,7 @@ sources+=(src/ros/scene_params.cpp src/ros/scene_settings.cpp src/ros/scene_bodi
   src/ros/param_values.cpp src/ros/imu_noise_params.cpp src/ros/conversions.cpp src/ros/wrench_intake.cpp
   src/ros/log_thread.cpp src/ros/body_state_request.cpp src/ros/yaml_value.cpp src/ros/yaml_sizing.cpp)
 export repo out cxx core_flags_text="${core_flags[*]}"
+# shellcheck disable=SC2016  # expanded by the inner bash
 printf '%s\n' "${sources[@]}" | xargs -P "$jobs" -I{} bash -c '
   src="$1"; shift
   obj="$out/obj/$(echo "$src" | tr / _).o"

@@ -10,9 +10,9 @@
 #   RBS_JOBS=1 bash scripts/sanitizers.sh # build -j1
 #
 # All but one: Stress.RandomParticleForcesKeepEveryStateFinite (10^5 steps of
-# random forces on every scheme, 6.4 min under the sanitizers against 56 s
-# without) runs in scripts/test.sh only; the paths it takes are those of the
-# shorter core tests, which run here.
+# random forces on every scheme, the longest test by far under the sanitizers:
+# doc/reliability.md) runs in scripts/test.sh only; the paths it takes are
+# those of the shorter core tests, which run here.
 #
 # Every instrumented process (gtest binaries, the node launched by rostest)
 # writes its reports to $ws/sanitizer_logs/ (ASAN_OPTIONS/UBSAN_OPTIONS

@@ -1,15 +1,16 @@
 #!/bin/bash
 # The one test command: installs what is missing, checks the C++ formatting
-# (scripts/format_check.sh), builds, runs clang-tidy on the C++ changed since
-# main (scripts/tidy_check.sh; on main, what the last commit changed), runs
-# every test (gtest for the core, rostest for the node, the Python 3.8 /
-# C++17 check, then the install space's test) and exits non-zero on any
-# failure.
+# of the whole tree (scripts/format_check.sh), lints every Python file and
+# shell script (scripts/lint_check.sh: pyflakes, shellcheck), builds, runs
+# clang-tidy on every source of src/ (scripts/tidy_check.sh), runs every test
+# (gtest for the core, rostest for the node, the Python 3.8 / C++17 check,
+# then the install space's test) and exits non-zero on any failure.
 set -euo pipefail
 # shellcheck source=scripts/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 bash "$repo/scripts/install_deps.sh"
 bash "$repo/scripts/format_check.sh"
+bash "$repo/scripts/lint_check.sh"
 bash "$repo/scripts/build.sh"
 bash "$repo/scripts/tidy_check.sh"
 cd "$ws"

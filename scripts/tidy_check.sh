@@ -1,24 +1,23 @@
 #!/bin/bash
-# Runs clang-tidy with the checks of .clang-tidy on the C++ of src/ and
-# include/ and exits non-zero on any finding. It reads the compile commands
-# of the catkin workspace (scripts/common.sh: RBS_WS or .build_ws/), which
-# scripts/build.sh writes: build first. Run by the test command after the
-# build.
+# Runs clang-tidy with the checks of .clang-tidy on every source of src/,
+# and through them on the package's headers they include, and exits non-zero
+# on any finding. It reads the compile commands of the catkin workspace
+# (scripts/common.sh: RBS_WS or .build_ws/), which scripts/build.sh writes:
+# build first. Run by the test command after the build.
 #
-#   bash scripts/tidy_check.sh           # the files changed since main
-#   bash scripts/tidy_check.sh --all     # every source of src/
+#   bash scripts/tidy_check.sh           # every source of src/
 #   bash scripts/tidy_check.sh FILE...   # these files
 #
-# The changed files are those that differ from the merge-base of HEAD and
-# origin/main (else main), committed or not, plus new untracked ones. When
-# there are none (main itself, as in CI on a clean clone), those the last
-# commit changed against its first parent (a merge: the whole branch it
-# brings); when that commit changed none either, nothing is checked. A
-# changed header is checked through the source of the same name when there
-# is one (else on its own); every source checks the package's headers it
-# includes. Sources run RBS_TIDY_JOBS at a time (default RBS_JOBS, 2): a few
-# files take seconds; --all (65 sources) about 7 minutes of CPU, so 3.5 to 4
-# minutes on two idle cores (9 to 12 measured while other builds shared them).
+# A header named on the command line is checked through the source of the
+# same name when there is one, else on its own. Sources run RBS_TIDY_JOBS at
+# a time (default RBS_JOBS, 2).
+#
+# A source found clean is remembered in the workspace (build/tidy_cache/)
+# under a key of everything clang-tidy's result depends on: its version,
+# .clang-tidy, the compile command and the content of every file of the
+# translation unit (scripts/tidy_keys.py). It is checked again only when
+# that key changes; RBS_TIDY_CACHE=0 checks every source. A fresh workspace
+# (as in CI) checks every source.
 set -euo pipefail
 # shellcheck source=scripts/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -34,28 +33,18 @@ command -v clang-tidy >/dev/null || {
   exit 1
 }
 
-# Every source of src/, relative to the checkout.
-all_sources() { find src -name '*.cpp' | sort; }
-
+case "${1:-}" in
+-*)
+  echo "usage: tidy_check.sh [FILE...]" >&2
+  exit 2
+  ;;
+esac
 files=()
-mode="changed"
-if [ "${1:-}" = "--all" ]; then
-  mode="all"
-elif [ $# -gt 0 ]; then
-  mode="named"
+if [ $# -gt 0 ]; then
   files=("$@")
 else
-  mapfile -t files < <(rbs_changed_cxx)
-  if [ ${#files[@]} -eq 0 ] && git rev-parse --verify -q "HEAD^1" >/dev/null; then
-    echo "tidy_check: no C++ changed since main: checking what the last commit changed"
-    mapfile -t files < <(rbs_changed_cxx "HEAD^1")
-  fi
-  if [ ${#files[@]} -eq 0 ]; then
-    echo "tidy_check: OK (no C++ changed; --all checks every source)"
-    exit 0
-  fi
+  mapfile -t files < <(find src -name '*.cpp' | sort)
 fi
-[ "$mode" = "all" ] && mapfile -t files < <(all_sources)
 
 # A header stands for the source of its name (src/ros/x.cpp for
 # include/rigid_body_sim/ros/x.h), else for itself; each once.
@@ -74,19 +63,44 @@ mapfile -t targets < <(printf '%s\n' "${targets[@]}" | sort -u)
 # The compile commands name the sources through the workspace's link to the
 # checkout: clang-tidy is given the same paths.
 link="$ws/src/rigid_body_sim"
+tidy_args="--quiet"
+cache="$ws/build/tidy_cache"
+mkdir -p "$cache"
+declare -A key_of
+if [ "${RBS_TIDY_CACHE:-1}" != 0 ]; then
+  while read -r path key; do
+    key_of["${path#"$link/"}"]="$key"
+  done < <(/usr/bin/python3 "$repo/scripts/tidy_keys.py" "$db" "$repo/.clang-tidy" "$tidy_args" \
+    "${targets[@]/#/$link/}")
+fi
+to_check=()
+for f in "${targets[@]}"; do
+  key="${key_of[$f]:--}"
+  if [ "$key" != "-" ] && [ -f "$cache/$key" ]; then continue; fi
+  to_check+=("$f ${key}")
+done
+
 logs="$(mktemp -d)"
 trap 'rm -rf "$logs"' EXIT
 start=$(date +%s)
-echo "tidy_check: ${#targets[@]} file(s), $tidy_jobs at a time"
-export link logs
+cached=$((${#targets[@]} - ${#to_check[@]}))
+echo "tidy_check: ${#targets[@]} file(s): ${#to_check[@]} to check, $tidy_jobs at a time; $cached clean as cached"
+build_dir="$ws/build"
+export link logs cache tidy_args build_dir
+# Each line "<source> <key>" becomes the inner script's $1 and $2.
 # shellcheck disable=SC2016  # expanded by the inner bash
-printf '%s\n' "${targets[@]}" | xargs -P "$tidy_jobs" -I{} bash -c '
+printf '%s\n' "${to_check[@]}" | xargs -r -P "$tidy_jobs" -L 1 bash -c '
   out="$logs/$(echo "$1" | tr / _).log"
-  if ! clang-tidy -p "$2" --quiet "$link/$1" >"$out" 2>&1; then touch "$out.failed"; fi
-' _ {} "$ws/build"
+  # shellcheck disable=SC2086  # tidy_args: words
+  if clang-tidy -p "$build_dir" $tidy_args "$link/$1" >"$out" 2>&1; then
+    [ "$2" = "-" ] || touch "$cache/$2"
+  else
+    touch "$out.failed"
+  fi
+' _
 failed=0
-for f in "${targets[@]}"; do
-  out="$logs/$(echo "$f" | tr / _).log"
+for entry in "${to_check[@]}"; do
+  out="$logs/$(echo "${entry% *}" | tr / _).log"
   if [ -f "$out.failed" ]; then
     failed=1
     # clang-tidy's counts of suppressed warnings are noise here.
@@ -95,9 +109,18 @@ for f in "${targets[@]}"; do
       sed "s|$link/||g" >&2 || true
   fi
 done
+# Keys no source has any more are dropped after a run over every source.
+if [ $# -eq 0 ] && [ "${RBS_TIDY_CACHE:-1}" != 0 ]; then
+  declare -A live
+  for key in "${key_of[@]}"; do live["$key"]=1; done
+  for entry in "$cache"/*; do
+    [ -e "$entry" ] || continue
+    [ -n "${live[$(basename "$entry")]:-}" ] || rm -f "$entry"
+  done
+fi
 elapsed=$(($(date +%s) - start))
 if [ "$failed" -ne 0 ]; then
   echo "tidy_check: findings above (.clang-tidy; ${elapsed} s)" >&2
   exit 1
 fi
-echo "tidy_check: OK (${#targets[@]} file(s), ${elapsed} s)"
+echo "tidy_check: OK (${#targets[@]} file(s), ${#to_check[@]} checked, ${elapsed} s)"

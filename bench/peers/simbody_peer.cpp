@@ -59,7 +59,8 @@ class SimbodyPeer final : public Peer {
   std::optional<double> tolerance() const override { return tolerance_; }
   bool Handles(const Scene& scene) const override { return !tolerance_ || scene.forces.empty(); }
   // At 1 ms its error is at round-off on the torque-free scenes and at the
-  // load hold's on the forced one, and a step costs ~100 µs (one body).
+  // load hold's on the forced one; its steps are costly (bench/README.md),
+  // and smaller ones would show nothing more.
   double smallest_dt_s() const override { return 3e-4; }
 
   void Setup(const Scene& scene, int copies, double dt_s) override {

@@ -321,8 +321,8 @@ TEST(Stress, MillionTorqueFreeSteps) {
   constexpr long kEvery = 10;  // diagnostics every 10 steps (a flip is 1500)
   for (const std::string& name : IntegratorNames()) {
     const auto integrator = MakeIntegrator(name);
-    // exact_free costs ~6 µs a step (the elliptic functions), 6 s for 1e6:
-    // 2e5 steps (130 flips) show its round-off just as well; the bench runs 1e7.
+    // exact_free's steps are costly (the elliptic functions): 2e5 steps
+    // (130 flips) show its round-off just as well; the bench runs 1e7.
     const long steps = IsExact(name) ? 200000 : 1000000;
     BodyState s = initial;
     double orthonormality = 0.0, l_drift = 0.0, pi_drift = 0.0, first = 0.0, second = 0.0;

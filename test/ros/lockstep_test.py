@@ -7,7 +7,6 @@ a late answer held from the next step; a stall times out (counted, WARN) and
 the node goes on; a pause during a wait stops the timeout; ~step_with_wrenches
 never waits, lists rejected entries and returns the state and its hash; the
 diagnostics' state_hash is the hash of the last published cycle."""
-import math
 import queue
 import sys
 import time

@@ -37,7 +37,7 @@ struct BodyHotColumns {
   std::vector<HeldLoads> loads;
   std::vector<char> loaded;
   std::vector<BodyFault> faults;  // kNone while the body moves
-  // The |L|² below which a free body needs no substep (step_limits.h).
+  // The |L|² below which a free body needs no substep (step_policy.h).
   std::vector<double> one_step_momentum_sq;
   // Each body's torque-free flow, kept only while the scheme continues them
   // (Integrator::continues_free_flows): the World sizes it before a step, so

@@ -5,13 +5,13 @@
 // before. A lane that does keeps their load parts rather than copying them
 // into the lanes again, and, when it wrote the body's state back in the
 // cache's last step, the state and the model parts too: copying them into
-// the lanes, eight scattered stores per cache line, costs a loaded body
-// about as much as the rest of the work around its kernel. So the cache
+// the lanes takes eight scattered stores per cache line, a large part of a
+// loaded body's step (bench/README.md). So the cache
 // belongs to one set of bodies (states and models, by index): whoever
 // writes one of their states outside the steps, or moves them to other
 // indices, calls ForgetStates before the next step. Only the first blocks
 // of each group are kept: past them, kept blocks would stream through
-// memory (~3 kB per eight bodies) where one reused block stays in cache.
+// memory where one reused block stays in cache.
 // When no load changed either, a batch of the same bodies as in the last
 // step need not look at its bodies at all: it steps the blocks it stepped
 // then (BatchRecord).

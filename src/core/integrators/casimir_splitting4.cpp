@@ -43,8 +43,8 @@ void CasimirSplitting4Integrator::Step(const BodyModel& model, const Load* load,
   }
   if (load->costly_to_evaluate()) {
     // Four evaluations per step either way; McLachlan's kicks between
-    // fourth-order free flows leave 16–240 times less error than the triple
-    // jump's at equal dt on the forced scenes tried, for 1.4 times the step.
+    // fourth-order free flows leave far less error than the triple jump's at
+    // equal dt on the forced scene, for a dearer step (doc/physics.md).
     NestedStep(kMcLachlanRkn4, kFree, model, split, *load, dt_s, state);
     return;
   }
