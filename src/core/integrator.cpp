@@ -2,15 +2,16 @@
 
 #include <stdexcept>
 
-#include "rigid_body_sim/core/integrators/casimir_rkn.h"
-#include "rigid_body_sim/core/integrators/casimir_splitting.h"
-#include "rigid_body_sim/core/integrators/casimir_splitting4.h"
-#include "rigid_body_sim/core/integrators/euler.h"
-#include "rigid_body_sim/core/integrators/exact_free.h"
-#include "rigid_body_sim/core/integrators/rk4.h"
-#include "rigid_body_sim/core/integrators/splitting.h"
-#include "rigid_body_sim/core/integrators/splitting4.h"
-#include "rigid_body_sim/core/integrators/symplectic_euler.h"
+#include "body_batch.h"
+#include "integrators/casimir_rkn.h"
+#include "integrators/casimir_splitting.h"
+#include "integrators/casimir_splitting4.h"
+#include "integrators/euler.h"
+#include "integrators/exact_free.h"
+#include "integrators/rk4.h"
+#include "integrators/splitting.h"
+#include "integrators/splitting4.h"
+#include "integrators/symplectic_euler.h"
 #include "rigid_body_sim/core/kinematics.h"
 
 namespace rigid_body_sim::core {
@@ -41,8 +42,6 @@ double Integrator::RotationErrorRate(const BodyModel& model, const BodyState& st
                                      double /*dt_s*/) const {
   return AngularVelocity(model, state).norm();
 }
-
-const char* const kDefaultIntegrator = "casimir_splitting4";
 
 const std::vector<IntegratorInfo>& IntegratorTable() {
   static const std::vector<IntegratorInfo> table = {

@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/step_policy.h"
+#include "step_policy.h"
 
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/kinematics.h"

@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/thread_team.h"
+#include "thread_team.h"
 
 #include <stdexcept>
 

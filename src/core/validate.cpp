@@ -9,7 +9,7 @@
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/check.h"
 #include "rigid_body_sim/core/format_number.h"
-#include "rigid_body_sim/core/step_policy.h"
+#include "step_policy.h"
 
 namespace rigid_body_sim::core {
 namespace {

@@ -14,8 +14,8 @@
 #include <Eigen/Core>
 #include <unsupported/Eigen/MatrixFunctions>
 
-#include "compositions.h"
-#include "step_parts.h"
+#include "integrators/compositions.h"
+#include "integrators/step_parts.h"
 
 namespace rigid_body_sim::core {
 namespace {

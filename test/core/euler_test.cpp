@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
+#include "integrators/euler.h"
 #include "rigid_body_sim/core/held_loads.h"
-#include "rigid_body_sim/core/integrators/euler.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "test_bodies.h"
 

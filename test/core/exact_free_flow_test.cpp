@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "rigid_body_sim/core/integrators/exact_free_flow.h"
+#include "integrators/exact_free_flow.h"
 #include "rigid_body_sim/core/world.h"
 #include "test_bodies.h"
 

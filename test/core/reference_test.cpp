@@ -10,9 +10,9 @@
 #include <gtest/gtest.h>
 #include <boost/math/special_functions/ellint_1.hpp>
 
+#include "integrators/exact_free.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
-#include "rigid_body_sim/core/integrators/exact_free.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/reference/symmetric_top.h"
 #include "rigid_body_sim/core/reference/torque_free.h"

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "rigid_body_sim/core/integrators/sin_cos.h"
+#include "integrators/sin_cos.h"
 
 namespace rigid_body_sim::core {
 namespace {

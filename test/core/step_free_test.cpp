@@ -9,11 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include "body_batch.h"
+#include "lane_cache.h"
 #include "rigid_body_sim/core/integrator.h"
-#include "rigid_body_sim/core/lane_cache.h"
 #include "rigid_body_sim/core/reference/free_body.h"
-#include "rigid_body_sim/core/step_policy.h"
 #include "rigid_body_sim/core/world.h"
+#include "step_policy.h"
 #include "test_bodies.h"
 
 namespace rigid_body_sim::core {

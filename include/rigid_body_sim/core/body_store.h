@@ -22,7 +22,6 @@
 #include "rigid_body_sim/core/body_properties.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
-#include "rigid_body_sim/core/integrators/exact_free_flow.h"
 #include "rigid_body_sim/core/step_record.h"
 
 namespace rigid_body_sim::core {
@@ -37,16 +36,13 @@ struct BodyHotColumns {
   std::vector<HeldLoads> loads;
   std::vector<char> loaded;
   std::vector<BodyFault> faults;  // kNone while the body moves
-  // The |L|² below which a free body needs no substep (step_policy.h).
+  // The |L|² below which a free body needs no substep at the World's dt
+  // (the cheap bound of the step's plan).
   std::vector<double> one_step_momentum_sq;
-  // Each body's torque-free flow, kept only while the scheme continues them
-  // (Integrator::continues_free_flows): the World sizes it before a step, so
-  // it is empty or shorter for the other schemes, and Add leaves it alone.
-  std::vector<ExactFreeFlow> free_flows;
 
   template <typename F>
   void ForEach(F&& f) {
-    f(models), f(states), f(loads), f(loaded), f(faults), f(one_step_momentum_sq), f(free_flows);
+    f(models), f(states), f(loads), f(loaded), f(faults), f(one_step_momentum_sq);
   }
 };
 

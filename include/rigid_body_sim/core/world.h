@@ -1,5 +1,6 @@
 // Bodies, their held wrenches, gravity and simulation time: the only place
-// that knows how a step is put together (doc/node.md, "Time, frames and pacing").
+// that knows what a step is made of (doc/node.md, "Time, frames and pacing");
+// how it is carried out is the StepEngine's, private to the core.
 #pragma once
 
 #include <cstdint>
@@ -19,16 +20,14 @@
 #include "rigid_body_sim/core/body_store.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
-#include "rigid_body_sim/core/lane_cache.h"
-#include "rigid_body_sim/core/step_policy.h"
 #include "rigid_body_sim/core/step_record.h"
-#include "rigid_body_sim/core/thread_team.h"
 #include "rigid_body_sim/core/world_def.h"
 #include "rigid_body_sim/core/wrench_table.h"
 
 namespace rigid_body_sim::core {
 
 class World;
+class StepEngine;
 
 // Told of every body added to or removed from a World, after the fact: the
 // one notification every per-body table outside the World follows.
@@ -48,6 +47,9 @@ class World {
   // the setters' checks among them) or a body that CheckBodyDef rejects
   // ("bodies[i] (name 'n'): ...").
   explicit World(const WorldDef& def, std::vector<BodyDef> bodies = {});
+  ~World();
+  World(World&&) noexcept;
+  World& operator=(World&&) noexcept;
 
   // Bodies are read by index (scene order; an index moves down when a body
   // before it is removed) or by BodyId (stable; a stale id throws
@@ -158,94 +160,25 @@ class World {
   }
 
  private:
-  // Fills step_records_ from the states and loads at the start of a Step.
-  void RecordStepStart();
   bool record_next_step_ = false;
   bool last_step_recorded_ = false;
 
-  // One thread's share of a Step: its batches, and what it counts over the
-  // blocks of bodies it takes, added to the World's counts once every block
-  // is done. Aligned to a cache line so that the threads' counts do not
-  // share one.
-  struct alignas(64) Share {
-    // Free bodies (full rank, moving, no load) of this step, stepped in
-    // batches through Integrator::StepFree (StepBatch).
-    std::vector<std::size_t> free_batch;
-    // Loaded full-rank bodies that need no substeps, batched the same way
-    // through Integrator::StepLoaded.
-    std::vector<std::size_t> loaded_batch;
-    // Full-rank bodies that need n > 1 substeps, batched by n and by whether
-    // they are loaded: a batch takes n steps of dt/n through StepFree or
-    // StepLoaded, so through the lanes as well, with a cache of its own that
-    // each of the n steps starts again. An empty batch is free for any n.
-    struct SubstepBatch {
-      std::uint32_t substeps = 0;
-      bool loaded = false;
-      std::vector<std::size_t> bodies;
-      std::vector<BodyState> before;
-      LaneCache lane_cache;
-    };
-    std::vector<SubstepBatch> substep_batches;  // at most kSubstepBatches
-    LaneCache lane_cache;
-    std::size_t frozen = 0;
-    std::uint64_t dropped_couples = 0;
-    std::uint32_t substeps_max = 1;
-  };
-  // Steps the bodies of indices [begin, end) that move, adding to `share`'s counts.
-  void StepBlock(std::size_t begin, std::size_t end, Share* share);
-  // After a body's step: L projected into the range of a rank-deficient I,
-  // then the CheckState bounds (a body that breaks one gets `before` back and
-  // is frozen).
-  void FinishStep(std::size_t index, const BodyState& before, Share* share);
-  // The CheckState bounds alone, for a full-rank body. Inline: it runs for
-  // every loaded body every step.
-  void CheckOrRestore(std::size_t index, const BodyState& before, Share* share) {
-    BodyState& state = bodies_.hot().states[index];
-    const BodyFault fault = CheckState(bodies_.hot().models[index], state);
-    if (fault != BodyFault::kNone) {
-      state = before;
-      Freeze(index, fault, share);
-    }
-  }
-  // `substeps` scalar steps of dt/n of body `index`, without the checks.
-  void StepAlone(std::size_t index, std::uint32_t substeps, const HeldLoads* load);
-  void Freeze(std::size_t index, BodyFault fault, Share* share);
   // The checks of a body that would be bodies[index]: names no other body or
   // site has, its properties and its initial state; throws
   // std::invalid_argument.
   void CheckBody(std::size_t index, const BodyDef& def) const;
   // Body `index`'s per-body constants: torque projector, damping, one-step bound.
   void PrepareBody(std::size_t index);
-  // After a state is written, or bodies move, outside Step: LaneCache::ForgetStates.
-  void ForgetLaneStates();
-  std::uint32_t SubstepsFor(const BodyModel& model, const HeldLoads* load,
-                            const BodyState& state) const;
-  using BatchStep = void (Integrator::*)(const BodyBatch& batch, double dt_s) const;
-  // Steps `bodies` by dt through `step` (StepFree or StepLoaded), which
-  // checks each body before it writes its state back (BodyBatch::faults):
-  // no copy of the states before the step. Freezes those that fail, and
-  // empties `bodies`.
-  // `within_one_step_bound`: as BodyBatch's.
-  void StepBatch(BatchStep step, std::vector<std::size_t>* bodies, bool within_one_step_bound,
-                 Share* share);
-  // Adds body `index` to the substep batch of its n and kind, stepping the
-  // batch when full; false (and nothing done) when every batch is taken by
-  // another n.
-  bool BatchSubsteps(std::size_t index, std::uint32_t substeps, bool loaded, Share* share);
-  // Steps `batch` n times by dt/n, checks each body, and empties it.
-  void StepSubstepBatch(Share::SubstepBatch* batch, Share* share);
-  // The bodies `indices` with the store's columns and `cache`, for the
-  // integrator.
-  BodyBatch Batch(const std::vector<std::size_t>& indices, LaneCache* cache);
 
   BodyStore bodies_;
   std::vector<BodyListener*> listeners_;
   WorldDef options_;
   std::unique_ptr<Integrator> integrator_;
   WrenchTable wrenches_;
-  std::vector<Share> shares_;  // one per thread, indexed as ThreadTeam members
-  // Behind a pointer, so that a World can move.
-  std::unique_ptr<ThreadTeam> team_;
+  // How a step is carried out, with the schemes' scratch and the threads
+  // (src/core/step_engine.h, private to the core). Behind a pointer, so that
+  // a World can move.
+  std::unique_ptr<StepEngine> engine_;
   std::size_t frozen_count_ = 0;
   bool has_gravity_ = false;
   std::uint64_t steps_ = 0;

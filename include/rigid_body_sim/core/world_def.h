@@ -9,7 +9,7 @@
 
 #include <Eigen/Core>
 
-#include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/default_integrator.h"
 
 namespace rigid_body_sim::core {
 

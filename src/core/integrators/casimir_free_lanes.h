@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <vector>
 
+#include "body_batch.h"
 #include "casimir_step.h"
 #include "compositions.h"
 #include "lane_math.h"
@@ -15,7 +16,7 @@
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/integrator.h"
-#include "rigid_body_sim/core/step_policy.h"
+#include "step_policy.h"
 
 namespace rigid_body_sim::core {
 

@@ -18,11 +18,11 @@
 
 #include "casimir_free_lanes.h"
 #include "casimir_step.h"
+#include "lane_cache.h"
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
-#include "rigid_body_sim/core/lane_cache.h"
 #include "step_parts.h"
 
 namespace rigid_body_sim::core {

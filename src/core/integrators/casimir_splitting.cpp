@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/integrators/casimir_splitting.h"
+#include "casimir_splitting.h"
 
 #include "casimir_step.h"
 

@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/integrators/casimir_splitting4.h"
+#include "casimir_splitting4.h"
 
 #include "casimir_free_lanes.h"
 #include "casimir_loaded_lanes.h"

@@ -2,7 +2,7 @@
 
 #include <cmath>
 
-#include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "free_rotation.h"
 #include "step_parts.h"
 
 namespace rigid_body_sim::core {

@@ -24,9 +24,9 @@
 #include <Eigen/Geometry>
 
 #include "casimir_step.h"
+#include "free_rotation.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
-#include "rigid_body_sim/core/integrators/free_rotation.h"
 #include "rigid_body_sim/core/load.h"
 #include "step_parts.h"
 

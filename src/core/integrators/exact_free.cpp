@@ -1,6 +1,7 @@
-#include "rigid_body_sim/core/integrators/exact_free.h"
+#include "exact_free.h"
 
-#include "rigid_body_sim/core/integrators/exact_free_flow.h"
+#include "body_batch.h"
+#include "exact_free_flow.h"
 #include "rigid_body_sim/core/reference/torque_free.h"
 #include "step_parts.h"
 

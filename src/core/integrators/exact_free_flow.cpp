@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/integrators/exact_free_flow.h"
+#include "exact_free_flow.h"
 
 #include <cmath>
 #include <cstdint>

@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "free_rotation.h"
 
 #include <cmath>
 

@@ -5,9 +5,9 @@
 // one call left in the loop stops it vectorising.
 #pragma once
 
-#include "rigid_body_sim/core/integrators/free_rotation.h"
-#include "rigid_body_sim/core/integrators/sin_cos.h"
-#include "rigid_body_sim/core/step_policy.h"
+#include "free_rotation.h"
+#include "sin_cos.h"
+#include "step_policy.h"
 
 // One clone of the kernel per x86-64 level, picked by the loader; elsewhere,
 // or built with -DRBS_SIMD_CLONES=OFF (the same bits on every x86-64

@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/integrators/rk4.h"
+#include "rk4.h"
 
 #include "rigid_body_sim/core/kinematics.h"
 #include "step_parts.h"

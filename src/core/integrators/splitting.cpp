@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/integrators/splitting.h"
+#include "splitting.h"
 
 #include "strang_step.h"
 

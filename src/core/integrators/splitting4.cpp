@@ -1,4 +1,4 @@
-#include "rigid_body_sim/core/integrators/splitting4.h"
+#include "splitting4.h"
 
 #include "step_parts.h"
 #include "strang_step.h"

@@ -8,15 +8,16 @@
 
 #include <Eigen/Core>
 
+#include "body_batch.h"
 #include "casimir_free_lanes.h"
 #include "casimir_loaded_lanes.h"
+#include "lane_cache.h"
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
-#include "rigid_body_sim/core/lane_cache.h"
-#include "rigid_body_sim/core/step_policy.h"
+#include "step_policy.h"
 
 namespace rigid_body_sim::core {
 

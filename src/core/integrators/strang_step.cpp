@@ -1,6 +1,6 @@
 #include "strang_step.h"
 
-#include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "free_rotation.h"
 #include "step_parts.h"
 
 namespace rigid_body_sim::core {

@@ -1,6 +1,6 @@
-#include "rigid_body_sim/core/integrators/symplectic_euler.h"
+#include "symplectic_euler.h"
 
-#include "rigid_body_sim/core/integrators/free_rotation.h"
+#include "free_rotation.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "step_parts.h"
 

@@ -8,7 +8,7 @@
 #include <cstdint>
 #include <cstring>
 
-#include "rigid_body_sim/core/step_policy.h"
+#include "step_policy.h"
 
 namespace rigid_body_sim::core {
 

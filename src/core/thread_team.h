@@ -1,5 +1,5 @@
 // A fixed team of threads that runs one piece of work per member and waits
-// for all of them: World::Step's blocks of bodies. The threads start with the
+// for all of them: StepEngine::Step's blocks of bodies. The threads start with the
 // team and live until it ends, so a round allocates nothing; the members meet
 // under one mutex only where a round starts and ends.
 #pragma once

@@ -8,8 +8,8 @@
 #include <Eigen/Geometry>
 
 #include "rigid_body_sim/core/body_model.h"
-#include "rigid_body_sim/core/integrators/sin_cos.h"
-#include "rigid_body_sim/core/step_policy.h"
+#include "sin_cos.h"
+#include "step_policy.h"
 
 namespace rigid_body_sim::core {
 

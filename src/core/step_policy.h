@@ -1,7 +1,7 @@
 // How a body takes a World step, decided in one place from named limits
 // (each written once here): at rest (skipped), in one step (batched, through
 // the SIMD lanes where the scheme has them and the body fits), in n substeps
-// of dt/n, or not at all (frozen). World::Step classifies each body with
+// of dt/n, or not at all (frozen). StepEngine::Step classifies each body with
 // PlanStep; the lane kernels ask FitsFreeLanes / FitsFreeWideLanes /
 // FitsLoadedLanes / FitsLoadedWideLanes.
 #pragma once

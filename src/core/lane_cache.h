@@ -1,6 +1,6 @@
 // What a scheme keeps for one thread from one World step to the next: the
 // blocks of its loaded lanes. A held load stays the same for many steps, and
-// the World hands each thread its bodies in the same order every step, so
+// the StepEngine hands each thread its bodies in the same order every step, so
 // the n-th block of a step mostly takes the bodies and loads it took the step
 // before. A lane that does keeps their load parts rather than copying them
 // into the lanes again, and, when it wrote the body's state back in the

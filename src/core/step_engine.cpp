@@ -1,0 +1,268 @@
+#include "step_engine.h"
+
+#include <algorithm>
+
+#include <Eigen/Core>
+
+#include "body_batch.h"
+#include "rigid_body_sim/core/kinematics.h"
+#include "step_policy.h"
+
+namespace rigid_body_sim::core {
+namespace {
+
+// A couple smaller than this along a null axis is round-off, not a dropped load.
+constexpr double kDroppedCoupleTolerance_Nm = 1e-9;
+
+// Bodies handed to Integrator::StepFree or StepLoaded at a time: small
+// enough that their states are still in cache when they are checked.
+constexpr std::size_t kBatch = 64;
+
+// Substep batches (of distinct n) a thread keeps open at once; a body whose
+// n finds none free steps alone. Bodies needing substeps are the few that
+// spin fast at a scene's dt, or many at a large dt with similar n.
+constexpr std::size_t kSubstepBatches = 8;
+
+// Bodies a thread takes at a time in a Step: tens of microseconds of work for
+// free bodies (bench/README.md, "Threads"), long against taking a block (one
+// atomic add), short against a step of a scene large enough to want threads.
+constexpr std::size_t kBodiesPerBlock = 1024;
+
+}  // namespace
+
+StepEngine::StepEngine(std::size_t threads) : team_(threads) {
+  workspace_.shares.resize(threads);
+  for (Share& share : workspace_.shares) {
+    share.free_batch.reserve(kBatch);
+    share.loaded_batch.reserve(kBatch);
+    share.substep_batches.reserve(kSubstepBatches);
+  }
+}
+
+StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
+  hot_ = &bodies->hot();
+  context_ = context;
+  const std::size_t size = bodies->size();
+  if (context.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
+  workspace_.reported_faults.resize(size, BodyFault::kNone);
+  if (context.record) RecordStepStart(bodies);
+  for (Share& share : workspace_.shares) {
+    share.counts = StepCounts{};
+    share.lane_cache.StartStep(context.loads_kept);
+  }
+  auto step_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
+    StepBlock(begin, end, &workspace_.shares[member]);
+  };
+  team_.ForBlocks(size, kBodiesPerBlock, step_block);
+  StepCounts counts;
+  for (const Share& share : workspace_.shares) {
+    counts.frozen += share.counts.frozen;
+    counts.dropped_couples += share.counts.dropped_couples;
+    counts.substeps_max = std::max(counts.substeps_max, share.counts.substeps_max);
+  }
+  return counts;
+}
+
+void StepEngine::OnStatesWritten() {
+  for (Share& share : workspace_.shares) share.lane_cache.ForgetStates();
+}
+
+void StepEngine::OnBodyRemoved(std::size_t index) {
+  std::vector<ExactFreeFlow>& flows = workspace_.free_flows;
+  if (index < flows.size()) flows.erase(flows.begin() + static_cast<std::ptrdiff_t>(index));
+  OnStatesWritten();  // the bodies after it moved down
+}
+
+void StepEngine::OnIntegratorChanged() {
+  workspace_.free_flows.clear();  // kept for exact_free alone
+}
+
+void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
+  BodyHotColumns& hot = *hot_;
+  const Integrator& integrator = *context_.integrator;
+  const double dt_s = context_.dt_s;
+  const std::uint32_t max_substeps = context_.max_substeps;
+  // Whether every body in the free and the loaded batch is within PlanStep's
+  // cheap bound (BodyBatch::within_one_step_bound).
+  bool free_within_bound = true, loaded_within_bound = true;
+  for (std::size_t i = begin; i < end; ++i) {
+    if (hot.faults[i] != BodyFault::kNone) continue;
+    const BodyModel& model = hot.models[i];
+    const BodyState& state = hot.states[i];
+    const HeldLoads* load = hot.loaded[i] ? &hot.loads[i] : nullptr;
+    const StepPlan plan =
+        PlanStep(integrator, model, state, load, hot.one_step_momentum_sq[i], dt_s, max_substeps);
+    switch (plan.step_class) {
+      case StepClass::kAtRest:
+        break;
+      case StepClass::kFrozen: {
+        const BodyFault fault = CheckState(model, state);  // a NaN state set from outside
+        Freeze(i, fault != BodyFault::kNone ? fault : BodyFault::kSpinAliased, share);
+        break;
+      }
+      case StepClass::kBatched:
+        if (load != nullptr) {
+          share->loaded_batch.push_back(i);
+          loaded_within_bound = loaded_within_bound && plan.within_one_step_bound;
+          if (share->loaded_batch.size() == kBatch) {
+            StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
+            loaded_within_bound = true;
+          }
+        } else {
+          share->free_batch.push_back(i);
+          free_within_bound = free_within_bound && plan.within_one_step_bound;
+          if (share->free_batch.size() == kBatch) {
+            StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
+            free_within_bound = true;
+          }
+        }
+        break;
+      case StepClass::kSubsteps: {
+        if (load != nullptr && !model.is_full_rank() &&
+            load->DroppedTorque(state.orientation.toRotationMatrix()) >
+                kDroppedCoupleTolerance_Nm) {
+          ++share->counts.dropped_couples;
+        }
+        share->counts.substeps_max = std::max(share->counts.substeps_max, plan.substeps);
+        if (model.is_full_rank() && !integrator.continues_free_flows() &&
+            BatchSubsteps(i, plan.substeps, load != nullptr, share)) {
+          break;
+        }
+        StepAlone(i, plan.substeps, load, share);
+        break;
+      }
+    }
+  }
+  StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
+  StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
+  for (Share::SubstepBatch& batch : share->substep_batches) StepSubstepBatch(&batch, share);
+}
+
+void StepEngine::StepBatch(BatchStep step, std::vector<std::size_t>* bodies,
+                           bool within_one_step_bound, Share* share) {
+  if (bodies->empty()) return;
+  BodyBatch batch = Batch(*bodies, &share->lane_cache);
+  std::vector<BodyFault>& reported = workspace_.reported_faults;
+  batch.faults = reported.data();
+  batch.within_one_step_bound = within_one_step_bound;
+  (context_.integrator->*step)(batch, context_.dt_s);
+  for (const std::size_t index : *bodies) {
+    if (reported[index] != BodyFault::kNone) {
+      Freeze(index, reported[index], share);
+      reported[index] = BodyFault::kNone;
+    }
+  }
+  bodies->clear();
+}
+
+bool StepEngine::BatchSubsteps(std::size_t index, std::uint32_t substeps, bool loaded,
+                               Share* share) {
+  std::vector<Share::SubstepBatch>& batches = share->substep_batches;
+  auto batch = std::find_if(batches.begin(), batches.end(), [&](const Share::SubstepBatch& b) {
+    return b.substeps == substeps && b.loaded == loaded;
+  });
+  if (batch == batches.end()) {
+    batch = std::find_if(batches.begin(), batches.end(),
+                         [](const Share::SubstepBatch& b) { return b.bodies.empty(); });
+  }
+  if (batch == batches.end()) {
+    if (batches.size() == kSubstepBatches) return false;
+    batch = batches.emplace(batches.end());
+  }
+  batch->substeps = substeps;
+  batch->loaded = loaded;
+  batch->bodies.push_back(index);
+  batch->before.push_back(hot_->states[index]);
+  if (batch->bodies.size() == kBatch) StepSubstepBatch(&*batch, share);
+  return true;
+}
+
+void StepEngine::StepSubstepBatch(Share::SubstepBatch* batch, Share* share) {
+  if (batch->bodies.empty()) return;
+  if (batch->bodies.size() == 1) {
+    // Alone, a body costs the lanes a whole block: the scalar step is cheaper.
+    const std::size_t index = batch->bodies[0];
+    StepAlone(index, batch->substeps, batch->loaded ? &hot_->loads[index] : nullptr, share);
+  } else {
+    const BodyBatch bodies = Batch(batch->bodies, &batch->lane_cache);
+    const double h = context_.dt_s / batch->substeps;
+    // Since the batch last stepped, its cache's states may have been put
+    // back (CheckOrRestore) or written from outside, unknown to it.
+    batch->lane_cache.ForgetStates();
+    for (std::uint32_t k = 0; k < batch->substeps; ++k) {
+      batch->lane_cache.StartStep();
+      if (batch->loaded) {
+        context_.integrator->StepLoaded(bodies, h);
+      } else {
+        context_.integrator->StepFree(bodies, h);
+      }
+    }
+    for (std::size_t k = 0; k < batch->bodies.size(); ++k) {
+      CheckOrRestore(batch->bodies[k], batch->before[k], share);
+    }
+  }
+  batch->bodies.clear();
+  batch->before.clear();
+}
+
+void StepEngine::StepAlone(std::size_t index, std::uint32_t substeps, const HeldLoads* load,
+                           Share* share) {
+  const BodyModel& model = hot_->models[index];
+  BodyState& state = hot_->states[index];
+  const BodyState before = state;
+  const double h = context_.dt_s / substeps;
+  for (std::uint32_t k = 0; k < substeps; ++k) context_.integrator->Step(model, load, h, &state);
+  CheckOrRestore(index, before, share);
+}
+
+void StepEngine::CheckOrRestore(std::size_t index, const BodyState& before, Share* share) {
+  const BodyModel& model = hot_->models[index];
+  BodyState& state = hot_->states[index];
+  if (!model.is_full_rank()) {
+    // Keep L in the range of I, so that the published L equals I ω.
+    const Eigen::Matrix3d R_WB = state.orientation.toRotationMatrix();
+    state.angular_momentum =
+        R_WB * (model.range_projector() * (R_WB.transpose() * state.angular_momentum));
+  }
+  const BodyFault fault = CheckState(model, state);
+  if (fault != BodyFault::kNone) {
+    state = before;
+    Freeze(index, fault, share);
+  }
+}
+
+void StepEngine::Freeze(std::size_t index, BodyFault fault, Share* share) {
+  hot_->faults[index] = fault;
+  ++share->counts.frozen;
+}
+
+BodyBatch StepEngine::Batch(const std::vector<std::size_t>& indices, LaneCache* cache) {
+  std::vector<ExactFreeFlow>& flows = workspace_.free_flows;
+  return {hot_->models.data(),
+          hot_->loads.data(),
+          hot_->states.data(),
+          indices.data(),
+          indices.size(),
+          flows.empty() ? nullptr : flows.data(),
+          cache};
+}
+
+void StepEngine::RecordStepStart(BodyStore* bodies) {
+  const BodyHotColumns& hot = bodies->hot();
+  BodyColdColumns& cold = bodies->cold();
+  const std::size_t size = bodies->size();
+  cold.step_records.resize(size);
+  cold.step_record_valid.assign(size, 1);
+  for (std::size_t i = 0; i < size; ++i) {
+    const BodyState& state = hot.states[i];
+    const BodyProperties& properties = cold.properties[i];
+    StepRecord& record = cold.step_records[i];
+    record.start_velocity_mps = FrameOriginVelocity(hot.models[i], state, cold.frames[i].origin);
+    record.wrench =
+        hot.loaded[i] ? hot.loads[i].At(0.0, state.orientation.toRotationMatrix()) : Wrench{};
+    record.wrench.force -= properties.linear_damping_per_s * state.linear_momentum;
+    record.wrench.torque -= properties.angular_damping_per_s * state.angular_momentum;
+  }
+}
+
+}  // namespace rigid_body_sim::core
