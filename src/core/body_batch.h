@@ -35,7 +35,8 @@ struct BodyBatch {
   // step to step; null: none.
   LaneCache* lane_cache = nullptr;
   // Where Integrator::StepFree and StepLoaded record a body whose step
-  // breaks a CheckState bound, indexed like states; such a body keeps its
+  // breaks a CheckState bound, indexed like states (the store's fault
+  // column: recording the fault freezes the body); such a body keeps its
   // state from before the step, so the caller needs no copy of it. Null: the
   // caller checks.
   BodyFault* faults = nullptr;

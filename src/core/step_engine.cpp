@@ -44,7 +44,6 @@ StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
   context_ = context;
   const std::size_t size = bodies->size();
   if (context.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
-  workspace_.reported_faults.resize(size, BodyFault::kNone);
   if (context.record) RecordStepStart(bodies);
   for (Share& share : workspace_.shares) {
     share.counts = StepCounts{};
@@ -75,6 +74,18 @@ void StepEngine::OnBodyRemoved(std::size_t index) {
 
 void StepEngine::OnIntegratorChanged() {
   workspace_.free_flows.clear();  // kept for exact_free alone
+}
+
+// Inline: built once per batch, in the step loop.
+inline BodyBatch StepEngine::Batch(const std::vector<std::size_t>& indices, LaneCache* cache) {
+  std::vector<ExactFreeFlow>& flows = workspace_.free_flows;
+  return {hot_->models.data(),
+          hot_->loads.data(),
+          hot_->states.data(),
+          indices.data(),
+          indices.size(),
+          flows.empty() ? nullptr : flows.data(),
+          cache};
 }
 
 void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
@@ -142,15 +153,14 @@ void StepEngine::StepBatch(BatchStep step, std::vector<std::size_t>* bodies,
                            bool within_one_step_bound, Share* share) {
   if (bodies->empty()) return;
   BodyBatch batch = Batch(*bodies, &share->lane_cache);
-  std::vector<BodyFault>& reported = workspace_.reported_faults;
-  batch.faults = reported.data();
+  // The scheme writes a failing body's fault straight into the store's
+  // column, where every body of the batch had none: that freezes it.
+  const std::vector<BodyFault>& faults = hot_->faults;
+  batch.faults = hot_->faults.data();
   batch.within_one_step_bound = within_one_step_bound;
   (context_.integrator->*step)(batch, context_.dt_s);
   for (const std::size_t index : *bodies) {
-    if (reported[index] != BodyFault::kNone) {
-      Freeze(index, reported[index], share);
-      reported[index] = BodyFault::kNone;
-    }
+    if (faults[index] != BodyFault::kNone) ++share->counts.frozen;
   }
   bodies->clear();
 }
@@ -234,17 +244,6 @@ void StepEngine::CheckOrRestore(std::size_t index, const BodyState& before, Shar
 void StepEngine::Freeze(std::size_t index, BodyFault fault, Share* share) {
   hot_->faults[index] = fault;
   ++share->counts.frozen;
-}
-
-BodyBatch StepEngine::Batch(const std::vector<std::size_t>& indices, LaneCache* cache) {
-  std::vector<ExactFreeFlow>& flows = workspace_.free_flows;
-  return {hot_->models.data(),
-          hot_->loads.data(),
-          hot_->states.data(),
-          indices.data(),
-          indices.size(),
-          flows.empty() ? nullptr : flows.data(),
-          cache};
 }
 
 void StepEngine::RecordStepStart(BodyStore* bodies) {

@@ -7,12 +7,13 @@
 // store.
 //
 // A body's step ends in one of two checks, and a body that fails either is
-// frozen by Freeze alone (its fault set and counted): a batch of bodies that
-// take one step each is stepped by the scheme into scratch (its lanes, or a
-// copy of the state) and written back only where the new state passes
-// CheckState, the failures reported to the engine (BodyBatch::faults); a
-// body that takes substeps is stepped in place from a copy of its state
-// before, which CheckOrRestore puts back when the state it reached fails.
+// frozen at its last good state, its fault set and counted: a batch of bodies
+// that take one step each is stepped by the scheme into scratch (its lanes,
+// or a copy of the state) and written back only where the new state passes
+// CheckState, the scheme writing the others' faults into the store's column
+// (BodyBatch::faults) and StepBatch counting them; a body that takes
+// substeps is stepped in place from a copy of its state before, which
+// CheckOrRestore puts back when the state it reached fails, then Freeze.
 #pragma once
 
 #include <cstddef>
@@ -108,10 +109,6 @@ class StepEngine {
     // empty or shorter for the other schemes, and an added body leaves it
     // alone.
     std::vector<ExactFreeFlow> free_flows;
-    // Where a scheme's batch step reports a body that fails its check
-    // (BodyBatch::faults), by body: kNone but between a batch's step and
-    // the Freeze of the bodies it reports.
-    std::vector<BodyFault> reported_faults;
   };
 
   // Steps the bodies of indices [begin, end) that move, adding to `share`'s counts.
@@ -136,7 +133,7 @@ class StepEngine {
   // then the CheckState bounds; a body that breaks one gets `before` back and
   // is frozen.
   void CheckOrRestore(std::size_t index, const BodyState& before, Share* share);
-  // The one place a body is frozen.
+  // Freezes body `index` with `fault` outside a batch step, and counts it.
   void Freeze(std::size_t index, BodyFault fault, Share* share);
   // The bodies `indices` with the store's columns, the flows and `cache`,
   // for the scheme.
