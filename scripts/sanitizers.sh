@@ -35,9 +35,10 @@ rbs_catkin_make -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" \
   -DCMAKE_SHARED_LINKER_FLAGS="-fsanitize=address,undefined" \
   -j"$jobs"
-build_done=$(date +%s)
-
 rbs_source_devel
+# The test binaries build in parallel here; run_tests runs them one at a time.
+catkin_make tests -j"$jobs"
+build_done=$(date +%s)
 
 logs="$ws/sanitizer_logs"
 rm -rf "$logs" "$ws/ros_home" build/test_results
