@@ -123,7 +123,7 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
       geometry_msgs::TwistStamped twist;
       twist.header.stamp = stamp;
       twist.header.frame_id = world_frame_;
-      twist.twist = ToTwistMsg(world.model(body), world.state(body));
+      twist.twist = ToFrameTwistMsg(world.model(body), world.state(body), frame.origin);
       topics->twist.publisher.publish(twist);
     }
     if (topics->odom.wanted()) {
