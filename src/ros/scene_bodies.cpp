@@ -200,7 +200,10 @@ SceneBody ReadBody(const XmlRpcValue& body, const std::string& name,
   }
   frames.origin = ReadFrameOrigin(body, frames.origin);
   if (body.hasMember("sites")) frames.sites = ReadSites(body["sites"], name);
-  if (body.hasMember("namespace")) graph.topic_namespace = ReadNamespace(body["namespace"]);
+  if (body.hasMember("namespace")) {
+    graph.topic_namespace = ReadNamespace(body["namespace"]);
+    graph.own_joint_states = urdf.has_value();
+  }
   const Eigen::Vector3d position = ReadOptionalVector3(body, "position");
   const Eigen::Quaterniond orientation =
       body.hasMember("orientation") ? ReadUnitQuaternion(body["orientation"], "orientation")

@@ -20,9 +20,10 @@ body_frames.test):
   reference origin; a spawned body's sites join them and leave with it;
 - `quad` (from config/quadrotor.urdf): its TF frame is its root link,
   sim/base_link; its links are not on /tf_static; ~joint_states names its
-  four rotor joints at 0, stamped as ~bodies; with `namespace: /uav1` its
-  topics are /uav1/pose, /uav1/odom, ... and /uav1/wrench pushes it; a
-  spawned body may not take that namespace, and takes a free one.
+  four rotor joints at 0, stamped as ~bodies, and so does its own
+  /uav1/joint_states; with `namespace: /uav1` its topics are /uav1/pose,
+  /uav1/odom, ... and /uav1/wrench pushes it; a spawned body may not take
+  that namespace, and takes a free one.
 """
 import math
 import threading
@@ -94,7 +95,8 @@ class BodyFrames(unittest.TestCase):
         cls.lock = threading.Lock()
         cls.messages = {name: [] for name in (
             'bodies', 'tf', 'tf_static', 'pose', 'odom', 'imu', 'wrench', 'joints', 'uav1_odom',
-            'uav1_applied', 'uav2_pose', 'twist', 'lever_pose', 'lever_twist', 'lever_applied')}
+            'uav1_applied', 'uav2_pose', 'twist', 'uav1_joints', 'lever_pose', 'lever_twist',
+            'lever_applied')}
         for name, topic, msg_type in (
                 ('bodies', NODE + '/bodies', BodyStateArray), ('tf', '/tf', TFMessage),
                 ('tf_static', '/tf_static', TFMessage), ('pose', NODE + '/arm/pose', PoseStamped),
@@ -105,6 +107,7 @@ class BodyFrames(unittest.TestCase):
                 ('uav1_applied', '/uav1/applied_wrench', WrenchStamped),
                 ('uav2_pose', '/uav2/pose', PoseStamped),
                 ('twist', NODE + '/arm/twist', TwistStamped),
+                ('uav1_joints', '/uav1/joint_states', JointState),
                 ('lever_pose', NODE + '/lever/pose', PoseStamped),
                 ('lever_twist', NODE + '/lever/twist', TwistStamped),
                 ('lever_applied', NODE + '/lever/applied_wrench', WrenchStamped)):
@@ -169,8 +172,8 @@ class BodyFrames(unittest.TestCase):
     def wait_for_outputs(self):
         """Every output the tests step and read flows (their topics are
         advertised after start), before the first test pauses the node."""
-        for name in ('pose', 'twist', 'odom', 'imu', 'wrench', 'joints', 'lever_pose',
-                     'lever_twist', 'lever_applied'):
+        for name in ('pose', 'twist', 'odom', 'imu', 'wrench', 'joints', 'uav1_joints',
+                     'lever_pose', 'lever_twist', 'lever_applied'):
             self.wait_for(name, lambda m: True, 'message on ' + name)
 
     def test_a_reference_body_pushed_in_its_frame_and_set_at_its_origin(self):
@@ -290,6 +293,11 @@ class BodyFrames(unittest.TestCase):
         self.assertEqual(sorted(joints.name), ROTORS)
         self.assertEqual(list(joints.position), [0.0] * 4)
         self.assertEqual(list(joints.velocity), [0.0] * 4)
+        # The URDF body with a namespace has its own.
+        own = self.at('uav1_joints', stamp)
+        self.assertEqual(sorted(own.name), ROTORS)
+        self.assertEqual(list(own.position), [0.0] * 4)
+        self.assertEqual(list(own.velocity), [0.0] * 4)
 
         # The sites, from the reference origin; the URDF links are not there.
         static = self.static_frames(self.wait_for(
