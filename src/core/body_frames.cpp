@@ -35,4 +35,13 @@ PointMotion ComMotion(const Eigen::Quaterniond& orientation, const Eigen::Vector
   return {position_m - offset_W, velocity_mps - omega_W.cross(offset_W)};
 }
 
+BodyState StateAtFrameOrigin(const BodyModel& model, FrameOrigin origin,
+                             const Eigen::Vector3d& position_m,
+                             const Eigen::Quaterniond& orientation,
+                             const Eigen::Vector3d& velocity_mps, const Eigen::Vector3d& omega_W) {
+  const PointMotion com =
+      ComMotion(orientation, omega_W, FrameOriginOffset(model, origin), position_m, velocity_mps);
+  return StateFromTwist(model, com.position_m, orientation, com.velocity_mps, omega_W);
+}
+
 }  // namespace rigid_body_sim::core

@@ -34,6 +34,14 @@ geometry_msgs::Transform ToFrameTransformMsg(const core::BodyModel& model,
   return msg;
 }
 
+geometry_msgs::Twist ToFrameTwistMsg(const core::BodyModel& model, const core::BodyState& state,
+                                     core::FrameOrigin origin) {
+  geometry_msgs::Twist msg;
+  msg.linear = ToVector3Msg(core::FrameOriginVelocity(model, state, origin));
+  msg.angular = ToVector3Msg(core::AngularVelocity(model, state));
+  return msg;
+}
+
 nav_msgs::Odometry ToOdometryMsg(const core::BodyModel& model, const core::BodyState& state,
                                  const std::string& world_frame_id, const BodyFrame& body_frame,
                                  const ros::Time& stamp) {

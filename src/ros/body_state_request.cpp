@@ -7,6 +7,7 @@
 namespace rigid_body_sim {
 
 std::optional<core::BodyState> StateFromRequest(const core::BodyModel& model,
+                                                core::FrameOrigin origin,
                                                 const geometry_msgs::Pose& pose,
                                                 const geometry_msgs::Twist& twist,
                                                 std::string* reason) {
@@ -24,7 +25,7 @@ std::optional<core::BodyState> StateFromRequest(const core::BodyModel& model,
     return std::nullopt;
   }
   const core::BodyState state =
-      core::StateFromTwist(model, position, *orientation, linear, angular);
+      core::StateAtFrameOrigin(model, origin, position, *orientation, linear, angular);
   const core::BodyFault fault = core::CheckState(model, state);
   if (fault != core::BodyFault::kNone) {
     *reason = std::string("the state would be ") + core::ToString(fault) +

@@ -4,6 +4,7 @@
 #include <geometry_msgs/TwistStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <sensor_msgs/Imu.h>
+#include <sensor_msgs/JointState.h>
 
 namespace rigid_body_sim {
 namespace {
@@ -47,10 +48,12 @@ BodyTopics::~BodyTopics() {
   if (worker_.joinable()) worker_.join();
 }
 
-void BodyTopics::Add(core::BodyId id, const std::string& body, const std::string& topic_namespace) {
+void BodyTopics::Add(core::BodyId id, const std::string& body, const std::string& topic_namespace,
+                     std::optional<std::vector<std::string>> joint_names) {
   auto topics = std::make_shared<Topics>();
   topics->body = body;
   topics->topic_namespace = topic_namespace;
+  topics->joint_names = std::move(joint_names);
   bodies_.Insert(id, topics);
   ++body_count_;
   if (enabled_) Push({std::move(topics), true});
@@ -94,6 +97,7 @@ void BodyTopics::Work() {
       task.topics->odom.publisher.shutdown();
       task.topics->imu.publisher.shutdown();
       task.topics->applied_wrench.publisher.shutdown();
+      task.topics->joint_states.publisher.shutdown();
       task.topics->wrench.shutdown();
       advertised_.fetch_sub(1, std::memory_order_relaxed);
     }
@@ -115,6 +119,9 @@ void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
   AdvertiseCounted<sensor_msgs::Imu>(nh, "imu", topics, &topics->imu, &step_record_subscribers_);
   AdvertiseCounted<geometry_msgs::WrenchStamped>(
       nh, "applied_wrench", topics, &topics->applied_wrench, &step_record_subscribers_);
+  if (topics->joint_names) {
+    AdvertiseCounted<sensor_msgs::JointState>(nh, "joint_states", topics, &topics->joint_states);
+  }
   const WrenchCallback& on_wrench = on_wrench_;
   topics->wrench = nh.subscribe<geometry_msgs::WrenchStamped>(
       "wrench", kWrenchQueueSize,

@@ -19,8 +19,9 @@ Eigen::Vector3d FromVector3Msg(const geometry_msgs::Vector3& msg) {
 }
 
 std::string BodyFrameId(const std::string& tf_prefix, const std::string& body_name) {
-  const std::string frame = tf_prefix + body_name;
-  return !frame.empty() && frame[0] == '/' ? frame.substr(1) : frame;
+  std::string frame = !tf_prefix.empty() && tf_prefix[0] == '/' ? tf_prefix.substr(1) : tf_prefix;
+  if (!frame.empty() && frame.back() != '/') frame += '/';
+  return frame + body_name;
 }
 
 geometry_msgs::Pose ToPoseMsg(const core::BodyState& state) {

@@ -9,6 +9,16 @@ constexpr std::uint32_t kQueueSize = 10;
 
 }  // namespace
 
+sensor_msgs::JointState HeldJointStatesMsg(const std::vector<std::string>& joints,
+                                           const ros::Time& stamp) {
+  sensor_msgs::JointState msg;
+  msg.header.stamp = stamp;
+  msg.name = joints;
+  msg.position.assign(joints.size(), 0.0);
+  msg.velocity.assign(joints.size(), 0.0);
+  return msg;
+}
+
 HeldJointStates::HeldJointStates(ros::NodeHandle private_nh) {
   int* subscribers = &joint_states_.subscribers;
   joint_states_.publisher = private_nh.advertise<sensor_msgs::JointState>(
@@ -39,12 +49,11 @@ void HeldJointStates::Publish(const ros::Time& stamp) {
 }
 
 void HeldJointStates::Rebuild() {
-  msg_.name.clear();
+  std::vector<std::string> joints;
   for (const auto& body : bodies_) {
-    msg_.name.insert(msg_.name.end(), body.second.begin(), body.second.end());
+    joints.insert(joints.end(), body.second.begin(), body.second.end());
   }
-  msg_.position.assign(msg_.name.size(), 0.0);
-  msg_.velocity.assign(msg_.name.size(), 0.0);
+  msg_ = HeldJointStatesMsg(joints, ros::Time());
   stale_ = false;
 }
 

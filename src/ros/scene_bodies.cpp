@@ -9,6 +9,7 @@
 
 #include <ros/names.h>
 
+#include "rigid_body_sim/core/body_frames.h"
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
@@ -199,7 +200,10 @@ SceneBody ReadBody(const XmlRpcValue& body, const std::string& name,
   }
   frames.origin = ReadFrameOrigin(body, frames.origin);
   if (body.hasMember("sites")) frames.sites = ReadSites(body["sites"], name);
-  if (body.hasMember("namespace")) graph.topic_namespace = ReadNamespace(body["namespace"]);
+  if (body.hasMember("namespace")) {
+    graph.topic_namespace = ReadNamespace(body["namespace"]);
+    graph.own_joint_states = urdf.has_value();
+  }
   const Eigen::Vector3d position = ReadOptionalVector3(body, "position");
   const Eigen::Quaterniond orientation =
       body.hasMember("orientation") ? ReadUnitQuaternion(body["orientation"], "orientation")
@@ -209,7 +213,7 @@ SceneBody ReadBody(const XmlRpcValue& body, const std::string& name,
   const core::BodyProperties properties = ReadProperties(body);
 
   // Unique names and a state the world's step can take are the World's to check.
-  const core::BodyState initial_state = StateAtFrameOrigin(
+  const core::BodyState initial_state = core::StateAtFrameOrigin(
       *model, frames.origin, position, orientation, linear_velocity, angular_velocity);
   return SceneBody{core::BodyDef{std::move(*model), initial_state, properties, std::move(frames)},
                    std::move(graph)};

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
@@ -79,16 +78,6 @@ std::vector<core::Site> ReadSites(const XmlRpcValue& value, const std::string& b
     sites.push_back(std::move(site));
   }
   return sites;
-}
-
-core::BodyState StateAtFrameOrigin(const core::BodyModel& model, core::FrameOrigin origin,
-                                   const Eigen::Vector3d& position_m,
-                                   const Eigen::Quaterniond& orientation,
-                                   const Eigen::Vector3d& velocity_mps,
-                                   const Eigen::Vector3d& omega_W) {
-  const core::PointMotion com = core::ComMotion(
-      orientation, omega_W, core::FrameOriginOffset(model, origin), position_m, velocity_mps);
-  return core::StateFromTwist(model, com.position_m, orientation, com.velocity_mps, omega_W);
 }
 
 }  // namespace rigid_body_sim

@@ -143,6 +143,22 @@ double ReadCount(const ParamReader& params, const std::string& key, double fallb
   return count;
 }
 
+// ~tf_prefix, else the nearest tf_prefix above the node
+// (NodeHandle::searchParam), as robot_state_publisher finds it.
+std::string ReadTfPrefix(const ros::NodeHandle& private_nh, const ParamReader& params) {
+  std::string key;
+  if (private_nh.hasParam("tf_prefix") || !private_nh.searchParam("tf_prefix", key)) {
+    return params.String("tf_prefix", "");
+  }
+  XmlRpcValue value;
+  if (!private_nh.getParam(key, value)) return "";
+  if (value.getType() != XmlRpcValue::TypeString) {
+    throw SceneError(key + " (the tf_prefix found above the node) must be a string, got " +
+                     Describe(value));
+  }
+  return value;
+}
+
 }  // namespace
 
 NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
@@ -150,7 +166,7 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   NodeSettings settings;
   settings.world_frame = params.String("world_frame", settings.world_frame);
   if (settings.world_frame.empty()) throw SceneError("~world_frame must not be empty");
-  settings.tf_prefix = params.String("tf_prefix", settings.tf_prefix);
+  settings.tf_prefix = ReadTfPrefix(private_nh, params);
   settings.rate_hz = params.Number("rate", settings.rate_hz);
   if (settings.rate_hz <= 0.0 || settings.rate_hz > 1e9) {
     throw SceneError("~rate must be > 0 and at most 1e9, got " + FormatNumber(settings.rate_hz));

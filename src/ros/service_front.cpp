@@ -161,8 +161,8 @@ bool ServiceFront::OnSetBodyState(SetBodyState::Request& request,
                  &response);
   }
   std::string reason;
-  const std::optional<core::BodyState> state =
-      StateFromRequest(world_.model(*body), request.pose, request.twist, &reason);
+  const std::optional<core::BodyState> state = StateFromRequest(
+      world_.model(*body), world_.frames(*body).origin, request.pose, request.twist, &reason);
   if (!state) return Reply("set_body_state", false, std::move(reason), &response);
   if (world_.SubstepsFor(*world_.IndexOf(*body), *state) == 0) {
     return Reply("set_body_state", false,

@@ -67,8 +67,10 @@ void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
   const std::string& name = world.model(id).name();
   per_body_.Insert(id, {{BodyFrameId(tf_prefix_, graph_.TfFrame(name)), world.frames(id).origin},
                         next_marker_id_++});
-  body_topics_.Add(id, name, graph_.TopicNamespace(name));
-  joint_states_.OnBodyAdded(id, graph_.at(name).held_joints);
+  const BodyGraphNames& names = graph_.at(name);
+  body_topics_.Add(id, name, graph_.TopicNamespace(name),
+                   names.own_joint_states ? std::make_optional(names.held_joints) : std::nullopt);
+  joint_states_.OnBodyAdded(id, names.held_joints);
 }
 
 void StatePublisher::OnBodyRemoved(const core::World& /*world*/, core::BodyId id) {
@@ -123,12 +125,15 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
       geometry_msgs::TwistStamped twist;
       twist.header.stamp = stamp;
       twist.header.frame_id = world_frame_;
-      twist.twist = ToTwistMsg(world.model(body), world.state(body));
+      twist.twist = ToFrameTwistMsg(world.model(body), world.state(body), frame.origin);
       topics->twist.publisher.publish(twist);
     }
     if (topics->odom.wanted()) {
       topics->odom.publisher.publish(
           ToOdometryMsg(world.model(body), world.state(body), world_frame_, frame, stamp));
+    }
+    if (topics->joint_states.wanted()) {
+      topics->joint_states.publisher.publish(HeldJointStatesMsg(*topics->joint_names, stamp));
     }
     const core::StepRecord* record = world.last_step_record(body);
     if (record == nullptr) continue;  // no step since start, reset, spawn or set state

@@ -30,17 +30,21 @@ const core::Site* SiteOfBody(const std::string& frame, core::BodyId body,
 
 std::optional<WrenchFrame> FrameOfWrench(const std::string& frame_id, const std::string& body,
                                          const WrenchFrames& frames) {
-  const std::string frame = WithoutLeadingSlash(frame_id);
-  if (frame.empty() || frame == WithoutLeadingSlash(frames.world_frame)) return WrenchFrame{};
-  if (frame == body || frame == BodyFrameId(frames.tf_prefix, body)) {
-    return WrenchFrame{core::WrenchAxes::kBody, std::nullopt};
-  }
   const std::optional<core::BodyId> id = frames.world->FindBody(body);
-  const core::Site* site = id ? SiteOfBody(frame, *id, frames) : nullptr;
+  if (!id) return std::nullopt;
+  const core::BodyModel& model = frames.world->model(*id);
+  WrenchFrame wrench_frame;
+  wrench_frame.origin_m = core::FrameOriginOffset(model, frames.world->frames(*id).origin);
+  const std::string frame = WithoutLeadingSlash(frame_id);
+  if (frame.empty() || frame == WithoutLeadingSlash(frames.world_frame)) return wrench_frame;
+  wrench_frame.axes = core::WrenchAxes::kBody;
+  wrench_frame.acts_at_origin = true;
+  if (frame == body || frame == BodyFrameId(frames.tf_prefix, body)) return wrench_frame;
+  const core::Site* site = SiteOfBody(frame, *id, frames);
   if (site == nullptr) return std::nullopt;
-  const WrenchFrame::SitePose pose{site->orientation.normalized().toRotationMatrix(),
-                                   core::BodyOffset(frames.world->model(*id), site->position_m)};
-  return WrenchFrame{core::WrenchAxes::kBody, pose};
+  wrench_frame.body_from_site = site->orientation.normalized().toRotationMatrix();
+  wrench_frame.origin_m = core::BodyOffset(model, site->position_m);
+  return wrench_frame;
 }
 
 std::string UnknownFrameMessage(const std::string& frame_id, const std::string& body,

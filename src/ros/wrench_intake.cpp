@@ -118,7 +118,8 @@ Checked<CoreWrench> CheckWrench(const std::string& body, const std::uint32_t* pa
   result.wrench.axes = frame->axes;
   result.wrench.force = frame->Vector(force);
   result.wrench.couple = frame->Vector(couple);
-  // A body wrench's force acts at the frame's origin: a site's is off the COM.
+  // A body wrench given in the body's frame or a site's acts at that frame's
+  // origin, which may be off the COM.
   if (particle == nullptr) result.wrench.couple += frame->OriginMoment(result.wrench.force);
   result.wrench.start_s = StartTimeOf(stamp, start_stamp, next_step_time_s);
   return result;

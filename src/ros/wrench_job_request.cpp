@@ -46,7 +46,8 @@ std::optional<core::WrenchJob> JobFromRequest(const ApplyBodyWrench::Request& re
   }
   core::WrenchJob job;
   job.body = *body;
-  // A site's axes and point become the body's: the job acts as one given there.
+  // The frame's axes and point become the body's, from its COM: the job acts as
+  // one given there.
   job.axes = frame->axes;
   job.force = frame->Vector(force);
   job.couple = frame->Vector(couple);

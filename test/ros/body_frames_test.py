@@ -2,10 +2,17 @@
 """A body's frames in the outputs (doc/node.md, "Frames of a body";
 body_frames.test):
 
+- `lever` (`frame: reference`, O at r = A(−x̄_CM) from the COM, isotropic,
+  no gravity): a job in its frame at a point p from O, and then the applied
+  wrench it reads sent back on ~lever/wrench with its frame_id, each give
+  Δp = A f dt and ΔL = A(c + r_p × f) dt over their step (r_p from the COM,
+  to the body's turn within the step), and read back about O; after
+  ~set_body_state of O's pose and twist, one torque-free step later ~bodies,
+  ~lever/pose and ~lever/twist are the closed-form rotation of that state;
 - `arm` (`frame: reference`, x̄_CM = (0.3, 0, 0), spinning at 2 rad/s about
   z under gravity): /tf, ~arm/pose and ~arm/odom give the reference origin,
-  x + A(−x̄_CM), and its velocity v + ω × A(−x̄_CM), in body axes for the
-  odometry; ~arm/imu reads the specific force of that origin (its finite
+  x + A(−x̄_CM), ~arm/twist and ~arm/odom its velocity v + ω × A(−x̄_CM)
+  (world axes, and body axes for the odometry); ~arm/imu reads the specific force of that origin (its finite
   difference across the step; about the centripetal −ω² r, as free fall
   cancels g); ~arm/applied_wrench gives gravity's torque about the origin,
   x̄_CM × F in body axes;
@@ -13,9 +20,10 @@ body_frames.test):
   reference origin; a spawned body's sites join them and leave with it;
 - `quad` (from config/quadrotor.urdf): its TF frame is its root link,
   sim/base_link; its links are not on /tf_static; ~joint_states names its
-  four rotor joints at 0, stamped as ~bodies; with `namespace: /uav1` its
-  topics are /uav1/pose, /uav1/odom, ... and /uav1/wrench pushes it; a
-  spawned body may not take that namespace, and takes a free one.
+  four rotor joints at 0, stamped as ~bodies, and so does its own
+  /uav1/joint_states; with `namespace: /uav1` its topics are /uav1/pose,
+  /uav1/odom, ... and /uav1/wrench pushes it; a spawned body may not take
+  that namespace, and takes a free one.
 """
 import math
 import threading
@@ -25,10 +33,10 @@ import unittest
 import numpy as np
 import rospy
 import rostest
-from geometry_msgs.msg import PoseStamped, WrenchStamped
+from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rigid_body_sim.msg import BodyStateArray
-from rigid_body_sim.testing import SimClient
+from rigid_body_sim.testing import SimClient, body_wrench
 from sensor_msgs.msg import Imu, JointState
 from tf2_msgs.msg import TFMessage
 
@@ -39,6 +47,10 @@ MASS = 4.0
 COM = np.array([0.3, 0.0, 0.0])  # x̄_CM, reference coordinates
 HALF = math.sqrt(0.5)
 ROTORS = ['rotor_0_joint', 'rotor_1_joint', 'rotor_2_joint', 'rotor_3_joint']
+LEVER_COM = np.array([0.4, 0.2, -0.1])  # x̄_CM of `lever`, reference coordinates
+# The impulse of a held body-axes wrench over a step is A f dt to the body's
+# turn within the step and since it started to turn (a few 1e-6 rad).
+TURN = 1e-5
 # Position round-off of a rotated 0.3 m offset; velocities of ~1 m/s.
 TIGHT = 1e-12
 # An IMU's finite difference of velocities ~1 m/s over dt = 1e-3 s.
@@ -66,6 +78,16 @@ def xyzw(msg):
     return np.array([msg.x, msg.y, msg.z, msg.w])
 
 
+def quaternion_multiply(a, b):
+    """a * b for (x, y, z, w) quaternions."""
+    av, aw, bv, bw = np.asarray(a[:3]), a[3], np.asarray(b[:3]), b[3]
+    return np.concatenate([aw * bv + bw * av + np.cross(av, bv), [aw * bw - av.dot(bv)]])
+
+
+def inverse(q):
+    return np.asarray(q) * [-1, -1, -1, 1]
+
+
 class BodyFrames(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -73,7 +95,8 @@ class BodyFrames(unittest.TestCase):
         cls.lock = threading.Lock()
         cls.messages = {name: [] for name in (
             'bodies', 'tf', 'tf_static', 'pose', 'odom', 'imu', 'wrench', 'joints', 'uav1_odom',
-            'uav1_applied', 'uav2_pose')}
+            'uav1_applied', 'uav2_pose', 'twist', 'uav1_joints', 'lever_pose', 'lever_twist',
+            'lever_applied')}
         for name, topic, msg_type in (
                 ('bodies', NODE + '/bodies', BodyStateArray), ('tf', '/tf', TFMessage),
                 ('tf_static', '/tf_static', TFMessage), ('pose', NODE + '/arm/pose', PoseStamped),
@@ -82,7 +105,12 @@ class BodyFrames(unittest.TestCase):
                 ('joints', NODE + '/joint_states', JointState),
                 ('uav1_odom', '/uav1/odom', Odometry),
                 ('uav1_applied', '/uav1/applied_wrench', WrenchStamped),
-                ('uav2_pose', '/uav2/pose', PoseStamped)):
+                ('uav2_pose', '/uav2/pose', PoseStamped),
+                ('twist', NODE + '/arm/twist', TwistStamped),
+                ('uav1_joints', '/uav1/joint_states', JointState),
+                ('lever_pose', NODE + '/lever/pose', PoseStamped),
+                ('lever_twist', NODE + '/lever/twist', TwistStamped),
+                ('lever_applied', NODE + '/lever/applied_wrench', WrenchStamped)):
             rospy.Subscriber(topic, msg_type, cls.on(cls.messages[name]), queue_size=1000)
         cls.sim = SimClient(NODE)
 
@@ -119,10 +147,101 @@ class BodyFrames(unittest.TestCase):
     def static_frames(msg):
         return {t.child_frame_id: t for t in msg.transforms}
 
-    def test_reference_frame_sites_and_joints(self):
-        # Every output flows (its topics are advertised after start) before the steps.
-        for name in ('pose', 'odom', 'imu', 'wrench', 'joints'):
+    def expect_impulse(self, before, after, force, torque):
+        """`lever`'s Δp and ΔL from `before` to `after` (BodyStates a step
+        apart) are those of `force` at its COM and `torque` about it, body
+        axes of `before`, over dt."""
+        dt = self.sim.dt
+        for change, body_axes in ((after.linear_momentum - before.linear_momentum, force),
+                                  (after.angular_momentum - before.angular_momentum, torque)):
+            expected = rotate(before.orientation, body_axes) * dt
+            np.testing.assert_allclose(change, expected, atol=TURN * np.linalg.norm(expected))
+
+    def expect_applied(self, reading, before, after, force, torque):
+        """`reading` (~lever/applied_wrench) is `force` at the COM and `torque`
+        about it, body axes of `before` (the step's start), read about O in
+        the body axes of `after`: Aₐᵀ A_b f and Aₐᵀ A_b τ − (−x̄_CM) × that."""
+        def to_after(v):
+            return rotate(inverse(after.orientation), rotate(before.orientation, v))
+        self.assertEqual(reading.header.frame_id, 'sim/lever')
+        f = to_after(force)
+        np.testing.assert_allclose(xyz(reading.wrench.force), f, atol=TIGHT)
+        np.testing.assert_allclose(xyz(reading.wrench.torque),
+                                   to_after(torque) - np.cross(-LEVER_COM, f), atol=TIGHT)
+
+    def wait_for_outputs(self):
+        """Every output the tests step and read flows (their topics are
+        advertised after start), before the first test pauses the node."""
+        for name in ('pose', 'twist', 'odom', 'imu', 'wrench', 'joints', 'uav1_joints',
+                     'lever_pose', 'lever_twist', 'lever_applied'):
             self.wait_for(name, lambda m: True, 'message on ' + name)
+
+    def test_a_reference_body_pushed_in_its_frame_and_set_at_its_origin(self):
+        self.wait_for_outputs()
+        self.sim.pause()
+        start = self.sim.step(1).states['lever']
+
+        # A job in the lever's frame for one step: f at p (from O, body axes), couple c.
+        f, c, p = np.array([0.3, -0.2, 0.5]), np.array([0.02, 0.01, -0.03]), np.array([0.1, -0.3, 0.2])
+        pushed = self.sim.step(1, [body_wrench('lever', force=f, torque=c, point=p, frame='lever')])
+        torque = c + np.cross(p - LEVER_COM, f)  # about the COM: r_p = p − x̄_CM
+        self.expect_impulse(start, pushed.states['lever'], f, torque)
+        applied = self.at('lever_applied', pushed.stamp.to_nsec())
+        self.expect_applied(applied, start, pushed.states['lever'], f, torque)
+
+        # The reading sent back on ~lever/wrench (frame_id sim/lever, its force
+        # at O): the same impulse, in the body axes of its step.
+        echo = rospy.Publisher(NODE + '/lever/wrench', WrenchStamped, queue_size=1, latch=True)
+        echo.publish(applied)
+        before = pushed
+        for _ in range(200):  # until the node holds it: a step whose reading is not zero
+            after = self.sim.step(1)
+            reading = self.at('lever_applied', after.stamp.to_nsec())
+            if any(xyz(reading.wrench.force)):
+                break
+            before = after
+        else:
+            self.fail('the wrench sent back did not act within 200 steps')
+        echoed_force = xyz(applied.wrench.force)
+        echoed_torque = xyz(applied.wrench.torque) + np.cross(-LEVER_COM, echoed_force)
+        self.expect_impulse(before.states['lever'], after.states['lever'], f, torque)
+        self.expect_applied(reading, before.states['lever'], after.states['lever'], echoed_force,
+                            echoed_torque)
+        self.sim.clear_body_wrenches('lever')
+        echo.unregister()
+
+        # ~set_body_state: O at `origin`, moving at `velocity`, turning at ω.
+        # One torque-free step of the isotropic lever turns it by exp(ω dt)
+        # and moves its COM at a constant v = v_O − ω × r.
+        origin, velocity = np.array([-4.0, 1.0, 2.0]), np.array([0.5, -0.3, 0.2])
+        omega = np.array([0.4, -0.7, 1.1])
+        q0 = np.array([0.1, 0.3, -0.2, 0.9]) / np.linalg.norm([0.1, 0.3, -0.2, 0.9])
+        self.sim.set_body_state('lever', origin, q0, velocity, omega)
+        stepped = self.sim.step(1)
+        dt = self.sim.dt
+        angle = np.linalg.norm(omega) * dt
+        turn = np.concatenate([math.sin(angle / 2) * omega / np.linalg.norm(omega),
+                               [math.cos(angle / 2)]])
+        q1 = quaternion_multiply(turn, q0)
+        r0, r1 = rotate(q0, -LEVER_COM), rotate(q1, -LEVER_COM)
+        com_velocity = velocity - np.cross(omega, r0)
+        com = origin - r0 + com_velocity * dt
+        lever = stepped.states['lever']
+        np.testing.assert_allclose(lever.position, com, atol=TIGHT)
+        np.testing.assert_allclose(lever.linear_velocity, com_velocity, atol=TIGHT)
+        np.testing.assert_allclose(lever.angular_velocity, omega, atol=TIGHT)
+        pose = self.at('lever_pose', stepped.stamp.to_nsec())
+        np.testing.assert_allclose(xyz(pose.pose.position), com + r1, atol=TIGHT)
+        q = xyzw(pose.pose.orientation)
+        np.testing.assert_allclose(q * np.sign(q.dot(q1)), q1, atol=TIGHT)
+        twist = self.at('lever_twist', stepped.stamp.to_nsec())
+        self.assertEqual(twist.header.frame_id, 'world')
+        np.testing.assert_allclose(xyz(twist.twist.linear), com_velocity + np.cross(omega, r1),
+                                   atol=TIGHT)
+        np.testing.assert_allclose(xyz(twist.twist.angular), omega, atol=TIGHT)
+
+    def test_reference_frame_sites_and_joints(self):
+        self.wait_for_outputs()
         self.sim.pause()
         previous = self.sim.step(1)
         current = self.sim.step(1)
@@ -142,6 +261,10 @@ class BodyFrames(unittest.TestCase):
 
         pose = self.at('pose', stamp)
         np.testing.assert_allclose(xyz(pose.pose.position), origin, atol=TIGHT)
+        twist = self.at('twist', stamp)
+        self.assertEqual(twist.header.frame_id, 'world')
+        np.testing.assert_allclose(xyz(twist.twist.linear), velocity, atol=TIGHT)
+        np.testing.assert_array_equal(xyz(twist.twist.angular), arm.angular_velocity)
         odom = self.at('odom', stamp)
         self.assertEqual(odom.child_frame_id, 'sim/arm')
         np.testing.assert_allclose(xyz(odom.pose.pose.position), origin, atol=TIGHT)
@@ -170,6 +293,11 @@ class BodyFrames(unittest.TestCase):
         self.assertEqual(sorted(joints.name), ROTORS)
         self.assertEqual(list(joints.position), [0.0] * 4)
         self.assertEqual(list(joints.velocity), [0.0] * 4)
+        # The URDF body with a namespace has its own.
+        own = self.at('uav1_joints', stamp)
+        self.assertEqual(sorted(own.name), ROTORS)
+        self.assertEqual(list(own.position), [0.0] * 4)
+        self.assertEqual(list(own.velocity), [0.0] * 4)
 
         # The sites, from the reference origin; the URDF links are not there.
         static = self.static_frames(self.wait_for(

@@ -190,7 +190,7 @@ core::BodyModel OffsetCube() {
 
 const BodyFrame kReferenceFrame{"sim/offset_cube", core::FrameOrigin::kReference};
 
-TEST(BodyOutputs, AReferenceFramesPoseAndOdometryAreThoseOfItsOrigin) {
+TEST(BodyOutputs, AReferenceFramesPoseTwistAndOdometryAreThoseOfItsOrigin) {
   const core::BodyModel body = OffsetCube();
   // Turned 90° about z, the COM at (1, 2, 3) moving at (1, 0, 0), ω = (0, 0, 2):
   // the origin is at x + A r = (1, 2, 3) + (0, −0.3, 0) and moves at
@@ -208,6 +208,12 @@ TEST(BodyOutputs, AReferenceFramesPoseAndOdometryAreThoseOfItsOrigin) {
   const geometry_msgs::Transform at_com = ToFrameTransformMsg(body, state, core::FrameOrigin::kCom);
   EXPECT_EQ(at_com.translation, ToVector3Msg(state.position));
   EXPECT_EQ(at_com.rotation, transform.rotation);
+
+  // ~<body>/twist: the origin's velocity and ω in world axes; at the COM, ~bodies' twist.
+  const geometry_msgs::Twist twist = ToFrameTwistMsg(body, state, core::FrameOrigin::kReference);
+  EXPECT_VECTOR_NEAR(twist.linear, 1.6, 0.0, 0.0, kRotationRoundOff);
+  EXPECT_VECTOR_NEAR(twist.angular, 0.0, 0.0, 2.0, kRotationRoundOff);
+  EXPECT_EQ(ToFrameTwistMsg(body, state, core::FrameOrigin::kCom), ToTwistMsg(body, state));
 
   const nav_msgs::Odometry msg = ToOdometryMsg(body, state, "world", kReferenceFrame, kStamp);
   EXPECT_EQ(msg.child_frame_id, "sim/offset_cube");

@@ -27,10 +27,14 @@ TEST(Conversions, BodyStateCarriesTheStateAndWhatFollowsFromIt) {
   EXPECT_DOUBLE_EQ(msg.kinetic_energy, core::KineticEnergy(box, state));
 }
 
-TEST(Conversions, BodyFrameIdsHaveNoLeadingSlash) {
+TEST(Conversions, BodyFrameIdsJoinAsTfResolveWithoutALeadingOrDoubledSlash) {
   EXPECT_EQ(BodyFrameId("", "box"), "box");
   EXPECT_EQ(BodyFrameId("sim/", "box"), "sim/box");
   EXPECT_EQ(BodyFrameId("/sim/", "box"), "sim/box");
+  // Joined as robot_state_publisher joins tf_prefix and a link.
+  EXPECT_EQ(BodyFrameId("robot1", "base_link"), "robot1/base_link");
+  EXPECT_EQ(BodyFrameId("/robot1", "base_link"), "robot1/base_link");
+  EXPECT_EQ(BodyFrameId("/", "base_link"), "base_link");
 }
 
 TEST(Conversions, SecondsSinceIsExactInNanosecondsAndSigned) {

@@ -1,13 +1,16 @@
-// Sites as wrench frames: what the checks make of a wrench given in a site's
-// frame, held in a world and evaluated at a turned body, against the torque
-// about the COM written out by hand, couple + r × f.
+// Sites and the body's own frame as wrench frames: what the checks make of a
+// wrench given in a site's frame or in a `frame: reference` body's, held in a
+// world and evaluated at a turned body, against the torque about the COM
+// written out by hand, couple + r × f.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/core/world.h"
+#include "rigid_body_sim/ros/body_outputs.h"
 #include "rigid_body_sim/ros/wrench_frame.h"
 #include "rigid_body_sim/ros/wrench_intake.h"
 #include "rigid_body_sim/ros/wrench_job_request.h"
@@ -82,11 +85,27 @@ geometry_msgs::WrenchStamped TopicMessage(const std::string& frame_id) {
   return msg;
 }
 
-// The arm's total wrench at its start state (world axes), with `hold` the
-// only load: held, one step recorded, then everything cleared again.
+// The arm alone with its frame at the reference origin (frame: reference),
+// O at −x̄_CM from the COM, in the same start state.
+core::World& ReferenceArm() {
+  static core::World world = [] {
+    core::BodyFrames frames;
+    frames.origin = core::FrameOrigin::kReference;
+    const core::BodyModel arm = Arm();
+    return core::World(
+        core::WorldDef{},
+        {core::BodyDef(arm,
+                       core::StateFromTwist(arm, {1, 2, 3}, kArmOrientation, {0, 0, 0}, {0, 0, 0}),
+                       {}, frames)});
+  }();
+  return world;
+}
+
+// The total wrench on the first body of `world` at its start state (world
+// axes), with `hold` the only load: held, one step recorded, then everything
+// cleared again.
 template <typename Hold>
-core::Wrench ArmWrench(Hold&& hold) {
-  core::World& world = ArmAndBall();
+core::Wrench FirstBodyWrench(core::World& world, Hold&& hold) {
   world.Reset();
   hold(world);
   world.RecordNextStep();
@@ -95,6 +114,12 @@ core::Wrench ArmWrench(Hold&& hold) {
   EXPECT_NE(record, nullptr);
   world.Reset();
   return record != nullptr ? record->wrench : core::Wrench{};
+}
+
+// The same for the arm of ArmAndBall (frame: com).
+template <typename Hold>
+core::Wrench ArmWrench(Hold&& hold) {
+  return FirstBodyWrench(ArmAndBall(), std::forward<Hold>(hold));
 }
 
 void ExpectNear(const Eigen::Vector3d& actual, const Eigen::Vector3d& expected) {
@@ -151,6 +176,92 @@ TEST(WrenchFrame, AJobAtASiteTakesItsAxesAndItsPoint) {
   const Eigen::Vector3d force = R_WB * R_BS * kForce;
   ExpectNear(wrench.force, force);
   ExpectNear(wrench.torque, R_WB * R_BS * kCouple + (R_WB * point).cross(force));
+}
+
+WrenchFrames ReferenceFrames() { return MakeWrenchFrames(ReferenceArm(), "world", "sim/"); }
+
+// O from the COM, body axes: −x̄_CM.
+const Eigen::Vector3d kOriginOffset = -kCom;
+
+TEST(WrenchFrame, AWrenchInAReferenceBodysFrameActsAtItsOrigin) {
+  for (const std::string frame_id : {"arm", "sim/arm", "/sim/arm"}) {
+    const CheckedBodyWrench checked =
+        CheckBodyWrench(TopicMessage(frame_id), "arm", ReferenceFrames(), kStart, 0.0);
+    ASSERT_TRUE(checked.accepted()) << frame_id << ": " << checked.detail;
+    const core::Wrench wrench = FirstBodyWrench(
+        ReferenceArm(), [&](core::World& world) { world.HoldBodyWrench(checked.wrench); });
+    // F = R_WB f;  τ = R_WB c + (R_WB r) × F, r = −x̄_CM.
+    const Eigen::Vector3d force = R_WB * kForce;
+    ExpectNear(wrench.force, force);
+    ExpectNear(wrench.torque, R_WB * kCouple + (R_WB * kOriginOffset).cross(force));
+  }
+  // In world axes the force still acts at the COM.
+  const CheckedBodyWrench world_axes =
+      CheckBodyWrench(TopicMessage("world"), "arm", ReferenceFrames(), kStart, 0.0);
+  ASSERT_TRUE(world_axes.accepted()) << world_axes.detail;
+  const core::Wrench wrench = FirstBodyWrench(
+      ReferenceArm(), [&](core::World& world) { world.HoldBodyWrench(world_axes.wrench); });
+  ExpectNear(wrench.force, kForce);
+  ExpectNear(wrench.torque, kCouple);
+}
+
+TEST(WrenchFrame, AReferenceBodysJobPointIsFromItsOriginInBodyOrWorldAxes) {
+  ApplyBodyWrench::Request request;
+  request.body = "arm";
+  request.reference_point.x = 0.05;
+  request.reference_point.y = -0.3;
+  request.reference_point.z = 0.2;
+  request.wrench = TopicMessage("").wrench;
+  request.duration = ros::Duration(-1.0);
+  // The point in body axes from the COM: O + p.
+  const Eigen::Vector3d point = kOriginOffset + Eigen::Vector3d(0.05, -0.3, 0.2);
+  for (const std::string frame : {"sim/arm", ""}) {
+    request.reference_frame = frame;
+    std::string message;
+    const std::optional<core::WrenchJob> job =
+        JobFromRequest(request, ReferenceFrames(), kStart, 0.0, &message);
+    ASSERT_TRUE(job) << message;
+    ExpectNear(job->point_m, point);
+    const core::Wrench wrench =
+        FirstBodyWrench(ReferenceArm(), [&](core::World& world) { world.AddWrenchJob(*job); });
+    const bool body_axes = !frame.empty();
+    const Eigen::Vector3d force = body_axes ? Eigen::Vector3d(R_WB * kForce) : kForce;
+    const Eigen::Vector3d couple = body_axes ? Eigen::Vector3d(R_WB * kCouple) : kCouple;
+    ExpectNear(wrench.force, force);
+    ExpectNear(wrench.torque, couple + (R_WB * point).cross(force));
+  }
+}
+
+TEST(WrenchFrame, AnAppliedWrenchSentBackWithItsFrameIdActsTheSame) {
+  // A job at a site, off both the COM and the reference origin, read as
+  // ~<body>/applied_wrench reads it (about the frame origin, body axes), then
+  // held on ~<body>/wrench with the reading's frame_id: the same wrench, for
+  // a body of either frame.
+  for (const core::FrameOrigin origin : {core::FrameOrigin::kCom, core::FrameOrigin::kReference}) {
+    core::World& world = origin == core::FrameOrigin::kCom ? ArmAndBall() : ReferenceArm();
+    const WrenchFrames frames = MakeWrenchFrames(world, "world", "sim/");
+    ApplyBodyWrench::Request request;
+    request.body = "arm";
+    request.reference_point.x = 0.7;
+    request.reference_point.y = -0.2;
+    request.wrench = TopicMessage("").wrench;
+    request.duration = ros::Duration(-1.0);
+    std::string message;
+    const std::optional<core::WrenchJob> job =
+        JobFromRequest(request, frames, kStart, 0.0, &message);
+    ASSERT_TRUE(job) << message;
+    const core::Wrench applied =
+        FirstBodyWrench(world, [&](core::World& w) { w.AddWrenchJob(*job); });
+    world.Reset();
+    const geometry_msgs::WrenchStamped reading = ToAppliedWrenchMsg(
+        world.model(0), world.state(0), applied, BodyFrame{"sim/arm", origin}, kStart);
+    const CheckedBodyWrench echo = CheckBodyWrench(reading, "arm", frames, kStart, 0.0);
+    ASSERT_TRUE(echo.accepted()) << echo.detail;
+    const core::Wrench echoed =
+        FirstBodyWrench(world, [&](core::World& w) { w.HoldBodyWrench(echo.wrench); });
+    ExpectNear(echoed.force, applied.force);
+    ExpectNear(echoed.torque, applied.torque);
+  }
 }
 
 TEST(WrenchFrame, AParticleWrenchInASitesAxesStillActsAtTheParticle) {

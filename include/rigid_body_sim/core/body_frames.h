@@ -66,4 +66,13 @@ PointMotion ComMotion(const Eigen::Quaterniond& orientation, const Eigen::Vector
                       const Eigen::Vector3d& offset_B, const Eigen::Vector3d& position_m,
                       const Eigen::Vector3d& velocity_mps);
 
+// The state of a body whose frame origin is at `position_m` (world) and moves
+// at `velocity_mps` (world), in `orientation`, turning at `omega_W` (world
+// [rad/s]): the COM's position and velocity by ComMotion, then StateFromTwist.
+// How an initial state and ~set_body_state give a body's state.
+BodyState StateAtFrameOrigin(const BodyModel& model, FrameOrigin origin,
+                             const Eigen::Vector3d& position_m,
+                             const Eigen::Quaterniond& orientation,
+                             const Eigen::Vector3d& velocity_mps, const Eigen::Vector3d& omega_W);
+
 }  // namespace rigid_body_sim::core

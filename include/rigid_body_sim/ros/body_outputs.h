@@ -1,9 +1,9 @@
 // The per-body messages a robotics stack consumes (doc/node.md, "Per-body
-// outputs"): odometry, a simulated IMU and the applied wrench. Pure builders
-// over a published state and the core's record of the step that reached it;
-// the caller passes the stamp, the simulation time of that state. Each refers
-// to the body's frame: the body axes, with their origin at the COM or at the
-// reference origin (core::FrameOrigin).
+// outputs"): TF, pose, twist, odometry, a simulated IMU and the applied
+// wrench. Pure builders over a published state and the core's record of the
+// step that reached it; the caller passes the stamp, the simulation time of
+// that state. Each refers to the body's frame: the body axes, with their
+// origin at the COM or at the reference origin (core::FrameOrigin).
 #pragma once
 
 #include <cstddef>
@@ -12,6 +12,7 @@
 
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Transform.h>
+#include <geometry_msgs/Twist.h>
 #include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
 #include <ros/time.h>
@@ -41,6 +42,11 @@ geometry_msgs::Pose ToFramePoseMsg(const core::BodyModel& model, const core::Bod
 geometry_msgs::Transform ToFrameTransformMsg(const core::BodyModel& model,
                                              const core::BodyState& state,
                                              core::FrameOrigin origin);
+
+// The velocity of the body frame's origin (core::FrameOriginVelocity) and the
+// angular velocity, world axes, for ~<body>/twist.
+geometry_msgs::Twist ToFrameTwistMsg(const core::BodyModel& model, const core::BodyState& state,
+                                     core::FrameOrigin origin);
 
 // Header in the world frame, child frame the body's; the frame's pose, and
 // the velocity of its origin and the angular velocity in body axes (Aᵀv_O,

@@ -1,10 +1,11 @@
 // Each body's own topics (doc/node.md, "Topics and services"): the
-// publishers and the wrench subscription in its topic namespace (~<body>
-// unless the body names one), advertised and
-// shut down on a thread of their own. Each is a call to the master of a few
-// milliseconds, so 10,000 bodies' topics would hold the first step back by
-// minutes, and a spawn or delete would make steps late: the stepping thread
-// only queues the work and uses a body's topics once they exist.
+// publishers (a URDF body with a namespace has its own joint_states) and the
+// wrench subscription in its topic namespace (~<body> unless the body names
+// one), advertised and shut down on a thread of their own. Each is a call to
+// the master of a few milliseconds, so 10,000 bodies' topics would hold the
+// first step back by minutes, and a spawn or delete would make steps late:
+// the stepping thread only queues the work and uses a body's topics once
+// they exist.
 #pragma once
 
 #include <atomic>
@@ -14,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -46,6 +48,10 @@ class BodyTopics {
     CountedPublisher odom;
     CountedPublisher imu;
     CountedPublisher applied_wrench;
+    // The body's own joint_states, with its held joints' names; advertised
+    // only for a body that has one (BodyGraphNames::own_joint_states).
+    std::optional<std::vector<std::string>> joint_names;
+    CountedPublisher joint_states;
     ros::Subscriber wrench;
     std::atomic<bool> advertised{false};
     std::atomic<bool> removed{false};  // set when the body goes: not advertised after
@@ -61,9 +67,10 @@ class BodyTopics {
   BodyTopics(const BodyTopics&) = delete;
   BodyTopics& operator=(const BodyTopics&) = delete;
 
-  // A new body named `body` with its topics in `topic_namespace` (resolved);
-  // they appear shortly.
-  void Add(core::BodyId id, const std::string& body, const std::string& topic_namespace);
+  // A new body named `body` with its topics in `topic_namespace` (resolved),
+  // joint_states among them when it has `joint_names`; they appear shortly.
+  void Add(core::BodyId id, const std::string& body, const std::string& topic_namespace,
+           std::optional<std::vector<std::string>> joint_names = std::nullopt);
   // The body goes now; its topics are shut down shortly.
   void Remove(core::BodyId id);
 

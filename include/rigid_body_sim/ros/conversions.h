@@ -32,8 +32,10 @@ BodyState ToBodyState(const core::BodyModel& model, const core::BodyState& state
 BodyStateArray ToBodyStateArray(const core::World& world, const ros::Time& stamp,
                                 const std::string& world_frame);
 
-// The TF frame of a body: tf_prefix + name, as written, without a leading '/'
-// (tf2 frame ids have none).
+// The TF frame of a body or site, joined as tf::resolve and
+// robot_state_publisher join them: "prefix/name", without a leading '/'
+// (tf2 frame ids have none); a prefix that ends in '/' is not given a
+// second one, and an empty prefix (or "/") leaves the name as it is.
 std::string BodyFrameId(const std::string& tf_prefix, const std::string& body_name);
 
 // stamp − start [s], computed in signed nanoseconds: exact, and defined for

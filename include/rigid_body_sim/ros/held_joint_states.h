@@ -1,7 +1,8 @@
 // ~joint_states (doc/node.md, "Frames of a body"): the joints held at 0 inside
 // the bodies (BodyGraphNames::held_joints, a URDF body's non-fixed joints),
 // so that a robot_state_publisher on the same URDF draws the links. Owned by
-// StatePublisher, published in its cycle with its stamp.
+// StatePublisher, published in its cycle with its stamp. A body's own
+// <namespace>/joint_states carries the same message for its joints alone.
 #pragma once
 
 #include <string>
@@ -15,6 +16,11 @@
 #include "rigid_body_sim/ros/body_topics.h"
 
 namespace rigid_body_sim {
+
+// `joints` at position 0 and velocity 0, stamped `stamp`: a body's own
+// joint_states (BodyTopics).
+sensor_msgs::JointState HeldJointStatesMsg(const std::vector<std::string>& joints,
+                                           const ros::Time& stamp);
 
 class HeldJointStates {
  public:

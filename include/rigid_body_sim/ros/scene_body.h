@@ -15,7 +15,8 @@ namespace rigid_body_sim {
 // frames the node broadcasts.
 struct BodyGraphNames {
   // The namespace of the body's topics (pose, twist, odom, imu,
-  // applied_wrench, wrench), a ROS graph name; "" is ~<body>.
+  // applied_wrench, wrench, and joint_states with own_joint_states), a ROS
+  // graph name; "" is ~<body>.
   std::string topic_namespace;
   // The TF frame's name before tf_prefix; "" is the body's name. A URDF body's
   // is its root link's.
@@ -26,6 +27,10 @@ struct BodyGraphNames {
   // Joints held at position 0 inside the body (a URDF body's non-fixed
   // joints), published so that robot_state_publisher draws its links.
   std::vector<std::string> held_joints;
+  // Whether the body's topic namespace has a joint_states of its own with
+  // its held joints (a URDF body given a `namespace`), for a
+  // robot_state_publisher in that namespace.
+  bool own_joint_states = false;
 };
 
 struct SceneBody {

@@ -1,6 +1,6 @@
 // The keys of a `bodies` entry that place its frames (doc/node.md, "Sites and
-// the frame origin"): `frame`, the point its frame is at; `sites`, named
-// frames fixed in it; and its initial state given at that frame's origin.
+// the frame origin"): `frame`, the point its frame is at, and `sites`, named
+// frames fixed in it.
 #pragma once
 
 #include <cstddef>
@@ -8,12 +8,8 @@
 #include <vector>
 
 #include <xmlrpcpp/XmlRpcValue.h>
-#include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include "rigid_body_sim/core/body_frames.h"
-#include "rigid_body_sim/core/body_model.h"
-#include "rigid_body_sim/core/body_state.h"
 
 namespace rigid_body_sim {
 
@@ -36,14 +32,5 @@ void CheckSiteName(const std::string& name, const std::string& key);
 // unique among a body's sites and across the scene are the core's to check
 // (core::CheckBodyDef).
 std::vector<core::Site> ReadSites(const XmlRpc::XmlRpcValue& value, const std::string& body_name);
-
-// The initial state of a body whose frame origin is at `position_m` (world)
-// and moves at `velocity_mps` (world), in `orientation`, turning at `omega_W`
-// (world [rad/s]): the COM's position and velocity by core::ComMotion.
-core::BodyState StateAtFrameOrigin(const core::BodyModel& model, core::FrameOrigin origin,
-                                   const Eigen::Vector3d& position_m,
-                                   const Eigen::Quaterniond& orientation,
-                                   const Eigen::Vector3d& velocity_mps,
-                                   const Eigen::Vector3d& omega_W);
 
 }  // namespace rigid_body_sim

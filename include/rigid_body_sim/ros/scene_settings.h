@@ -35,7 +35,7 @@ struct ShardSettings {
 // (SimulationNode::ApplyRuntimeSettings).
 struct NodeSettings : RuntimeKeys {
   std::string world_frame = "world";
-  std::string tf_prefix;    // prepended as written to body names for TF
+  std::string tf_prefix;    // joined to body and site names for TF (BodyFrameId)
   double rate_hz = 1000.0;  // integration rate, dt = 1 / rate
   bool publish_clock = false;
   // Each body's own topics (~<body>/pose, ...) advertised (extension): off
@@ -58,8 +58,9 @@ struct NodeSettings : RuntimeKeys {
 };
 
 // Every private parameter of `private_nh` but the bodies and the IMU noise,
-// with their documented defaults. Throws SceneError naming the first bad
-// "~key" read.
+// with their documented defaults; tf_prefix, when the node has none of its
+// own, is the nearest one above it (as robot_state_publisher finds it).
+// Throws SceneError naming the first bad "~key" read.
 NodeSettings ReadSettings(const ros::NodeHandle& private_nh);
 
 }  // namespace rigid_body_sim

@@ -76,11 +76,11 @@ using CheckedWrench = Checked<core::ParticleWrench>;
 using CheckedBodyWrench = Checked<core::BodyWrench>;
 
 // The check itself, without counting; frame_id as FrameOfWrench (its vectors
-// in a site's axes become body axes; a body wrench's force acts at the site's
-// origin, a particle wrench's at the particle). Times are
-// simulation times counted from `start_stamp`: a zero stamp starts at
-// `next_step_time_s`, the time of the next step; any other at stamp −
-// start_stamp (exact, in nanoseconds).
+// in a site's axes become body axes; a body wrench given in the body's frame
+// or a site's acts at that frame's origin, a particle wrench at the
+// particle). Times are simulation times counted from `start_stamp`: a zero
+// stamp starts at `next_step_time_s`, the time of the next step; any other
+// at stamp − start_stamp (exact, in nanoseconds).
 CheckedWrench CheckParticleWrench(const ParticleWrench& msg, const WrenchFrames& frames,
                                   const ros::Time& start_stamp, double next_step_time_s);
 
