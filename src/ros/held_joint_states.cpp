@@ -9,11 +9,14 @@ constexpr std::uint32_t kQueueSize = 10;
 
 }  // namespace
 
-HeldJointStates::HeldJointStates(ros::NodeHandle private_nh) {
+HeldJointStates::HeldJointStates(ros::NodeHandle private_nh, const HeldStart& held_start) {
   int* subscribers = &joint_states_.subscribers;
   joint_states_.publisher = private_nh.advertise<sensor_msgs::JointState>(
       "joint_states", kQueueSize,
-      [subscribers](const ros::SingleSubscriberPublisher&) { ++*subscribers; },
+      [this, subscribers, &held_start](const ros::SingleSubscriberPublisher& subscriber) {
+        ++*subscribers;
+        if (held_start.held() && !bodies_.empty()) subscriber.publish(Message(held_start.stamp()));
+      },
       [subscribers](const ros::SingleSubscriberPublisher&) { --*subscribers; });
 }
 
@@ -33,19 +36,21 @@ void HeldJointStates::OnBodyRemoved(core::BodyId id) {
 
 void HeldJointStates::Publish(const ros::Time& stamp) {
   if (bodies_.empty() || !joint_states_.wanted()) return;
-  if (stale_) Rebuild();
-  msg_.header.stamp = stamp;
-  joint_states_.publisher.publish(msg_);
+  joint_states_.publisher.publish(Message(stamp));
 }
 
-void HeldJointStates::Rebuild() {
-  msg_.name.clear();
-  for (const auto& body : bodies_) {
-    msg_.name.insert(msg_.name.end(), body.second.begin(), body.second.end());
+const sensor_msgs::JointState& HeldJointStates::Message(const ros::Time& stamp) {
+  if (stale_) {
+    msg_.name.clear();
+    for (const auto& body : bodies_) {
+      msg_.name.insert(msg_.name.end(), body.second.begin(), body.second.end());
+    }
+    msg_.position.assign(msg_.name.size(), 0.0);
+    msg_.velocity.assign(msg_.name.size(), 0.0);
+    stale_ = false;
   }
-  msg_.position.assign(msg_.name.size(), 0.0);
-  msg_.velocity.assign(msg_.name.size(), 0.0);
-  stale_ = false;
+  msg_.header.stamp = stamp;
+  return msg_;
 }
 
 }  // namespace rigid_body_sim
