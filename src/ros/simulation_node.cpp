@@ -47,11 +47,11 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
       intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix,
                                std::move(scene.other_shard_bodies), settings_.shard.count)),
+      clock_(settings_, held_start_),
       publisher_(private_nh, settings_, world_, graph_, held_start_,
                  [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
                    front_.OnBodyWrench(body, msg);
                  }),
-      clock_(settings_, held_start_),
       static_frames_(settings_.tf_prefix, world_, graph_),
       diagnostics_(private_nh, settings_, world_),
       editor_(&world_, &graph_,

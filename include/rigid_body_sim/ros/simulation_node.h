@@ -85,8 +85,11 @@ class SimulationNode : public LoopControl {
   core::StepPacer pacer_;
   WrenchIntake intake_;
   HeldStart held_start_;  // before the publishers, whose connect callbacks read it
-  StatePublisher publisher_;
+  // Advertised before every other topic: roscpp's poll thread hands what was
+  // published to the connections topic by topic in the order they were
+  // advertised, so /clock goes out ahead of the outputs of its stamp.
   ClockPublisher clock_;
+  StatePublisher publisher_;
   StaticFrames static_frames_;
   StateHashWorker state_hashes_;
   NodeDiagnostics diagnostics_;
