@@ -71,14 +71,8 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
 }
 
 void SimulationNode::Run() {
-  // Started paused, t_0 is held before any callback runs, so that every
-  // subscriber (the lockstep controllers too) receives it as it connects.
-  if (settings_.start_paused) {
-    StartClock();
-    HoldStartState();
-  }
   if (lockstep_) lockstep_->WaitForControllers(publisher_);
-  if (!settings_.start_paused) StartClock();
+  StartClock();
   next_report_ = Clock::now() + NodeDiagnostics::kReportPeriod;
   pacer_.Restart(Clock::now());
   diagnostics_.Start(Clock::now(), world_);
@@ -90,8 +84,12 @@ void SimulationNode::Run() {
       settings_.real_time_factor, start_stamp_.toSec(),
       lockstep_ ? (", lockstep with " + lockstep_->publisher_list()).c_str() : "",
       settings_.start_paused ? ", paused at the start time" : "");
-  // t_0, for the controllers' first answer (held instead when started paused).
-  if (lockstep_ && !settings_.start_paused) PublishCycle();
+  // Under lockstep t_0 is published, for the controllers' first answer, once
+  // their answers can reach the node; started paused, it is then held for
+  // every later subscriber (without lockstep, before any callback runs, so
+  // that every subscriber receives it as it connects, once).
+  if (lockstep_) PublishCycle();
+  if (settings_.start_paused) HoldStartState();
 
   ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
   while (ros::ok()) {
@@ -139,7 +137,6 @@ void SimulationNode::StartClock() {
 void SimulationNode::HoldStartState() {
   held_start_.Hold(world_, start_stamp_);
   state_hashes_.Set(core::StateHash(world_), start_stamp_);  // the held state, in the first report
-  if (lockstep_) lockstep_->OpenCycle(start_stamp_, Clock::now());
 }
 
 void SimulationNode::StepOnce(bool publishes_after) {

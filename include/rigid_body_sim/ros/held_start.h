@@ -1,9 +1,10 @@
 // The state a node started with ~start_paused waits at (doc/node.md, "Starting
-// paused"): t_0, published once to every subscriber of every output. Nothing
-// is broadcast at t_0; each output sends the held state to each subscriber as
-// it connects (its connect callback, on the stepping thread), as a latched
-// topic would, so that every subscriber, however late, gets t_0 exactly once.
-// Held until the first step or resume.
+// paused"): t_0, published once to every subscriber of every output. Each
+// output sends the held state to each subscriber as it connects (its connect
+// callback, on the stepping thread), as a latched topic would, so that every
+// subscriber, however late, gets t_0; held before any callback runs (under
+// lockstep, once t_0 has gone to the controllers), so once. Held until the
+// first step or resume.
 #pragma once
 
 #include <ros/time.h>

@@ -58,8 +58,7 @@ class SimulationNode : public LoopControl {
   // Fixes K0 from the clock: the first lattice point at or after now (under
   // lockstep, the first one that is a publish cycle, once it is reached).
   void StartClock();
-  // ~start_paused: t_0 held for every subscriber (HeldStart), the node paused
-  // there (under lockstep, waiting at t_0 as at a published cycle).
+  // ~start_paused: t_0 held for every subscriber (HeldStart), the node paused there.
   void HoldStartState();
   // One step; `publishes_after` when its state will be published.
   void StepOnce(bool publishes_after);
