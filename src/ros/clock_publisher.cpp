@@ -5,8 +5,10 @@
 namespace rigid_body_sim {
 namespace {
 
-// As a state topic's: a subscriber that falls this far behind loses the oldest.
-constexpr std::uint32_t kClockQueueSize = 10;
+// A subscriber's connection holds this many messages before it drops the
+// oldest: a late wake-up sends the ticks of up to 0.1 s of steps at once
+// (the loop's catch-up limit), 100 at 1 kHz.
+constexpr std::uint32_t kClockQueueSize = 100;
 
 rosgraph_msgs::Clock ClockMsg(const ros::Time& stamp) {
   rosgraph_msgs::Clock clock;
