@@ -39,6 +39,7 @@ add_library(rigid_body_sim_ros
   src/ros/log_thread.cpp
   src/ros/held_joint_states.cpp
   src/ros/state_publisher.cpp
+  src/ros/clock_publisher.cpp
   src/ros/static_frames.cpp
   src/ros/node_diagnostics.cpp
   src/ros/runtime_keys.cpp

@@ -21,7 +21,9 @@ set(_rbs_node_gtests
   outputs
   body_wrenches
   bodies_at_run_time
-  properties)
+  properties
+  sim_time
+  clock_order)
 
 foreach(_t ${_rbs_node_gtests})
   add_rostest_gtest(${_t}_test test/ros/${_t}.test test/ros/${_t}_test.cpp)
@@ -31,6 +33,10 @@ foreach(_t ${_rbs_node_gtests})
     add_dependencies(${_t}_test rigid_body_sim_node ${${PROJECT_NAME}_EXPORTED_TARGETS})
   endif()
 endforeach()
+# clock_order_test runs the node in its own process.
+if(TARGET clock_order_test)
+  target_link_libraries(clock_order_test rigid_body_sim_ros)
+endif()
 if(TARGET interface_test)
   target_include_directories(interface_test PRIVATE ${tf2_ros_INCLUDE_DIRS})
   target_link_libraries(interface_test ${tf2_ros_LIBRARIES})
@@ -50,6 +56,8 @@ add_rostest(test/ros/client.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/empty_world.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/body_frames.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/tf_prefix.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/clock_rate.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/start_paused.test DEPENDENCIES rigid_body_sim_node)
 
 # The node's pieces that need no master: message conversions, the per-body
 # outputs and the sites' static transforms, the wrench and request checks, the

@@ -13,29 +13,36 @@ constexpr std::uint32_t kStateQueueSize = 10;
 constexpr std::uint32_t kWrenchQueueSize = 100;
 
 // Advertises `publisher` of `owner` with its count (and `total`, if given)
-// kept by the connect callbacks. They run on the stepping thread and may
-// still be queued after the body went: they count only while it is there.
+// kept by the connect callbacks, which also tell `on_connect` of each new
+// subscriber. They run on the stepping thread and may still be queued after
+// the body went: they act only while it is there.
 template <typename Msg>
 void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic,
-                      const std::shared_ptr<BodyTopics::Topics>& owner, CountedPublisher* publisher,
+                      const std::shared_ptr<BodyTopics::Topics>& owner, BodyTopics::Output output,
+                      CountedPublisher* publisher, const BodyTopics::ConnectCallback& on_connect,
                       int* total = nullptr) {
   const std::weak_ptr<BodyTopics::Topics> alive = owner;
   int* subscribers = &publisher->subscribers;
+  const core::BodyId id = owner->id;
   const auto count = [alive, subscribers, total](int change) {
     const auto topics = alive.lock();
-    if (!topics || topics->removed.load(std::memory_order_relaxed)) return;
+    if (!topics || topics->removed.load(std::memory_order_relaxed)) return false;
     *subscribers += change;
     if (total != nullptr) *total += change;
+    return true;
   };
   publisher->publisher = nh.advertise<Msg>(
-      topic, kStateQueueSize, [count](const ros::SingleSubscriberPublisher&) { count(+1); },
+      topic, kStateQueueSize,
+      [count, &on_connect, id, output](const ros::SingleSubscriberPublisher& subscriber) {
+        if (count(+1)) on_connect(id, output, subscriber);
+      },
       [count](const ros::SingleSubscriberPublisher&) { count(-1); });
 }
 
 }  // namespace
 
-BodyTopics::BodyTopics(bool enabled, WrenchCallback on_wrench)
-    : enabled_(enabled), on_wrench_(std::move(on_wrench)) {
+BodyTopics::BodyTopics(bool enabled, WrenchCallback on_wrench, ConnectCallback on_connect)
+    : enabled_(enabled), on_wrench_(std::move(on_wrench)), on_connect_(std::move(on_connect)) {
   if (enabled_) worker_ = std::thread(&BodyTopics::Work, this);
 }
 
@@ -51,6 +58,7 @@ BodyTopics::~BodyTopics() {
 void BodyTopics::Add(core::BodyId id, const std::string& body, const std::string& topic_namespace,
                      std::optional<std::vector<std::string>> joint_names) {
   auto topics = std::make_shared<Topics>();
+  topics->id = id;
   topics->body = body;
   topics->topic_namespace = topic_namespace;
   topics->joint_names = std::move(joint_names);
@@ -113,14 +121,20 @@ void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
   // their own.
   ros::NodeHandle nh(topics->topic_namespace);
   const std::string& body = topics->body;
-  AdvertiseCounted<geometry_msgs::PoseStamped>(nh, "pose", topics, &topics->pose);
-  AdvertiseCounted<geometry_msgs::TwistStamped>(nh, "twist", topics, &topics->twist);
-  AdvertiseCounted<nav_msgs::Odometry>(nh, "odom", topics, &topics->odom);
-  AdvertiseCounted<sensor_msgs::Imu>(nh, "imu", topics, &topics->imu, &step_record_subscribers_);
-  AdvertiseCounted<geometry_msgs::WrenchStamped>(
-      nh, "applied_wrench", topics, &topics->applied_wrench, &step_record_subscribers_);
+  AdvertiseCounted<geometry_msgs::PoseStamped>(nh, "pose", topics, Output::kPose, &topics->pose,
+                                               on_connect_);
+  AdvertiseCounted<geometry_msgs::TwistStamped>(nh, "twist", topics, Output::kTwist, &topics->twist,
+                                                on_connect_);
+  AdvertiseCounted<nav_msgs::Odometry>(nh, "odom", topics, Output::kOdom, &topics->odom,
+                                       on_connect_);
+  AdvertiseCounted<sensor_msgs::Imu>(nh, "imu", topics, Output::kImu, &topics->imu, on_connect_,
+                                     &step_record_subscribers_);
+  AdvertiseCounted<geometry_msgs::WrenchStamped>(nh, "applied_wrench", topics,
+                                                 Output::kAppliedWrench, &topics->applied_wrench,
+                                                 on_connect_, &step_record_subscribers_);
   if (topics->joint_names) {
-    AdvertiseCounted<sensor_msgs::JointState>(nh, "joint_states", topics, &topics->joint_states);
+    AdvertiseCounted<sensor_msgs::JointState>(nh, "joint_states", topics, Output::kJointStates,
+                                              &topics->joint_states, on_connect_);
   }
   const WrenchCallback& on_wrench = on_wrench_;
   topics->wrench = nh.subscribe<geometry_msgs::WrenchStamped>(

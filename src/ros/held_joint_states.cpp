@@ -19,11 +19,14 @@ sensor_msgs::JointState HeldJointStatesMsg(const std::vector<std::string>& joint
   return msg;
 }
 
-HeldJointStates::HeldJointStates(ros::NodeHandle private_nh) {
+HeldJointStates::HeldJointStates(ros::NodeHandle private_nh, const HeldStart& held_start) {
   int* subscribers = &joint_states_.subscribers;
   joint_states_.publisher = private_nh.advertise<sensor_msgs::JointState>(
       "joint_states", kQueueSize,
-      [subscribers](const ros::SingleSubscriberPublisher&) { ++*subscribers; },
+      [this, subscribers, &held_start](const ros::SingleSubscriberPublisher& subscriber) {
+        ++*subscribers;
+        if (held_start.held() && !bodies_.empty()) subscriber.publish(Message(held_start.stamp()));
+      },
       [subscribers](const ros::SingleSubscriberPublisher&) { --*subscribers; });
 }
 
@@ -43,18 +46,20 @@ void HeldJointStates::OnBodyRemoved(core::BodyId id) {
 
 void HeldJointStates::Publish(const ros::Time& stamp) {
   if (bodies_.empty() || !joint_states_.wanted()) return;
-  if (stale_) Rebuild();
-  msg_.header.stamp = stamp;
-  joint_states_.publisher.publish(msg_);
+  joint_states_.publisher.publish(Message(stamp));
 }
 
-void HeldJointStates::Rebuild() {
-  std::vector<std::string> joints;
-  for (const auto& body : bodies_) {
-    joints.insert(joints.end(), body.second.begin(), body.second.end());
+const sensor_msgs::JointState& HeldJointStates::Message(const ros::Time& stamp) {
+  if (stale_) {
+    std::vector<std::string> joints;
+    for (const auto& body : bodies_) {
+      joints.insert(joints.end(), body.second.begin(), body.second.end());
+    }
+    msg_ = HeldJointStatesMsg(joints, stamp);
+    stale_ = false;
   }
-  msg_ = HeldJointStatesMsg(joints, ros::Time());
-  stale_ = false;
+  msg_.header.stamp = stamp;
+  return msg_;
 }
 
 }  // namespace rigid_body_sim

@@ -132,6 +132,17 @@ ShardSettings ReadShard(const ParamReader& params) {
   return ShardSettings{static_cast<std::uint32_t>(count), static_cast<std::uint32_t>(index)};
 }
 
+// /clock falls on every (rate / clock_rate)-th lattice point: the ratio must
+// be a whole number, to the rounding of the parameter server's doubles.
+void CheckClockRate(double clock_rate_hz, double rate_hz) {
+  const double steps_per_tick = rate_hz / clock_rate_hz;
+  if (clock_rate_hz <= 0.0 || clock_rate_hz > rate_hz ||
+      std::abs(steps_per_tick - std::round(steps_per_tick)) > 1e-9 * steps_per_tick) {
+    throw SceneError("~clock_rate must be > 0 and divide ~rate (" + FormatNumber(rate_hz) +
+                     ") into a whole number of steps, got " + FormatNumber(clock_rate_hz));
+  }
+}
+
 // A whole number from 1 to `max` as a double (the parameter server's numbers),
 // before it is cast.
 double ReadCount(const ParamReader& params, const std::string& key, double fallback, double max) {
@@ -183,6 +194,9 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   settings.real_time_factor = params.Number("real_time_factor", settings.real_time_factor);
   AsSceneError([&] { CheckRealTimeFactor(settings.real_time_factor, KeyNaming::kParameter); });
   settings.publish_clock = params.Bool("publish_clock", settings.publish_clock);
+  settings.clock_rate_hz = params.Number("clock_rate", settings.rate_hz);
+  CheckClockRate(settings.clock_rate_hz, settings.rate_hz);
+  settings.start_paused = params.Bool("start_paused", settings.start_paused);
   settings.publish_tf = params.Bool("publish_tf", settings.publish_tf);
   settings.per_body_topics = params.Bool("per_body_topics", settings.per_body_topics);
   settings.particle_marker_diameter_m =

@@ -47,7 +47,8 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
       intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix,
                                std::move(scene.other_shard_bodies), settings_.shard.count)),
-      publisher_(private_nh, settings_, world_, graph_,
+      clock_(settings_, held_start_),
+      publisher_(private_nh, settings_, world_, graph_, held_start_,
                  [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
                    front_.OnBodyWrench(body, msg);
                  }),
@@ -55,6 +56,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       diagnostics_(private_nh, settings_, world_),
       editor_(&world_, &graph_,
               [this](const WorldEvent& event) { diagnostics_.OnWorldEvent(event, world_); }),
+      paused_(settings_.start_paused),
       front_(private_nh, settings_, this, &editor_, &intake_) {
   // Each follows every spawn and delete.
   world_.AddListener(&publisher_);
@@ -76,12 +78,18 @@ void SimulationNode::Run() {
   diagnostics_.Start(Clock::now(), world_);
   ROS_INFO(
       "%s: %zu bodies, integrator %s, dt %g s, publishing every %llu steps, "
-      "real-time factor %g, start time %.9f s%s",
+      "real-time factor %g, start time %.9f s%s%s",
       ros::this_node::getName().c_str(), world_.size(), world_.integrator().name(),
       world_.options().dt_s, static_cast<unsigned long long>(lattice_.publish_every_steps()),
       settings_.real_time_factor, start_stamp_.toSec(),
-      lockstep_ ? (", lockstep with " + lockstep_->publisher_list()).c_str() : "");
-  if (lockstep_) PublishCycle();  // t_0, for the controllers' first answer
+      lockstep_ ? (", lockstep with " + lockstep_->publisher_list()).c_str() : "",
+      settings_.start_paused ? ", paused at the start time" : "");
+  // Under lockstep t_0 is published, for the controllers' first answer, once
+  // their answers can reach the node; started paused, it is then held for
+  // every later subscriber (without lockstep, before any callback runs, so
+  // that every subscriber receives it as it connects, once).
+  if (lockstep_) PublishCycle();
+  if (settings_.start_paused) HoldStartState();
 
   ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
   while (ros::ok()) {
@@ -126,16 +134,23 @@ void SimulationNode::StartClock() {
   start_stamp_ = Stamp();
 }
 
+void SimulationNode::HoldStartState() {
+  held_start_.Hold(world_, start_stamp_);
+  state_hashes_.Set(core::StateHash(world_), start_stamp_);  // the held state, in the first report
+}
+
 void SimulationNode::StepOnce(bool publishes_after) {
   // The IMU and the applied wrench read the step that reached a published state.
   if (publishes_after && publisher_.wants_step_record()) world_.RecordNextStep();
   const Clock::time_point start = Clock::now();
   world_.Step();
   diagnostics_.RecordStep(world_, Clock::now() - start, Stamp());
+  if (lattice_.IsClockTick(world_.step_count())) clock_.Publish(Stamp());
 }
 
 void SimulationNode::PublishCycle() {
   const ros::Time stamp = Stamp();
+  clock_.Publish(stamp);  // before every other output of this stamp; once
   publisher_.Publish(world_, stamp);
   const Clock::time_point now = Clock::now();
   // The wall time to the next cycle, when paced; unpaced, the first cycle
@@ -178,6 +193,7 @@ NodeStatus SimulationNode::Status() const {
 
 void SimulationNode::SetPaused(bool paused) {
   if (paused_ && !paused) {
+    held_start_.Release();
     pacer_.Restart(Clock::now());  // no catch-up for the pause
     if (lockstep_) lockstep_->Resume(Clock::now());
   }
@@ -187,6 +203,7 @@ void SimulationNode::SetPaused(bool paused) {
 std::uint64_t SimulationNode::StepWhilePaused(std::uint32_t steps) {
   // The cycle lockstep waits at is left without its answers: they come late.
   if (lockstep_) lockstep_->LeaveCycle();
+  held_start_.Release();
   for (std::uint32_t i = 0; i < steps; ++i) StepOnce(i + 1 == steps);
   PublishCycle();
   const std::uint64_t hash = core::StateHash(world_);

@@ -1,11 +1,10 @@
 #include "rigid_body_sim/ros/state_publisher.h"
 
+#include <optional>
+
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TwistStamped.h>
 #include <rigid_body_sim/BodyStateArray.h>
-#include <rosgraph_msgs/Clock.h>
-#include <tf2_msgs/TFMessage.h>
-#include <visualization_msgs/MarkerArray.h>
 
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/ros/body_outputs.h"
@@ -32,34 +31,74 @@ std_msgs::ColorRGBA BodyColor(int marker_id) {
   return color;
 }
 
+geometry_msgs::PoseStamped PoseMessage(const core::World& world, std::size_t body,
+                                       const BodyFrame& frame, const std::string& world_frame,
+                                       const ros::Time& stamp) {
+  geometry_msgs::PoseStamped pose;
+  pose.header.stamp = stamp;
+  pose.header.frame_id = world_frame;
+  pose.pose = ToFramePoseMsg(world.model(body), world.state(body), frame.origin);
+  return pose;
+}
+
+geometry_msgs::TwistStamped TwistMessage(const core::World& world, std::size_t body,
+                                         const BodyFrame& frame, const std::string& world_frame,
+                                         const ros::Time& stamp) {
+  geometry_msgs::TwistStamped twist;
+  twist.header.stamp = stamp;
+  twist.header.frame_id = world_frame;
+  twist.twist = ToFrameTwistMsg(world.model(body), world.state(body), frame.origin);
+  return twist;
+}
+
 }  // namespace
 
-template <typename Msg>
+template <typename Msg, typename SendHeld>
 void StatePublisher::Advertise(ros::NodeHandle& nh, const std::string& topic,
-                               std::uint32_t queue_size, CountedPublisher* counted) {
+                               std::uint32_t queue_size, CountedPublisher* counted,
+                               SendHeld send_held) {
   int* subscribers = &counted->subscribers;
   counted->publisher = nh.advertise<Msg>(
-      topic, queue_size, [subscribers](const ros::SingleSubscriberPublisher&) { ++*subscribers; },
+      topic, queue_size,
+      [this, subscribers, send_held](const ros::SingleSubscriberPublisher& subscriber) {
+        ++*subscribers;
+        if (held_start_.held()) send_held(subscriber);
+      },
       [subscribers](const ros::SingleSubscriberPublisher&) { --*subscribers; });
 }
 
 StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings,
                                const core::World& world, const BodyGraphTable& graph,
+                               const HeldStart& held_start,
                                BodyTopics::WrenchCallback on_body_wrench)
     : world_frame_(settings.world_frame),
-      publish_clock_(settings.publish_clock && settings.shard.index == 0),  // one /clock
       publish_tf_(settings.publish_tf),
       particle_marker_diameter_m_(settings.particle_marker_diameter_m),
       tf_prefix_(settings.tf_prefix),
       imu_noise_(settings.imu_noise),
       graph_(graph),
-      body_topics_(settings.per_body_topics, std::move(on_body_wrench)),
-      joint_states_(private_nh) {
+      held_start_(held_start),
+      body_topics_(settings.per_body_topics, std::move(on_body_wrench),
+                   [this](core::BodyId id, BodyTopics::Output output,
+                          const ros::SingleSubscriberPublisher& subscriber) {
+                     SendHeldBodyOutput(id, output, subscriber);
+                   }),
+      joint_states_(private_nh, held_start) {
   ros::NodeHandle root;
-  Advertise<tf2_msgs::TFMessage>(root, "/tf", kTfQueueSize, &tf_);
-  Advertise<BodyStateArray>(private_nh, "bodies", kStateQueueSize, &bodies_);
-  Advertise<visualization_msgs::MarkerArray>(private_nh, "particles", kStateQueueSize, &particles_);
-  if (publish_clock_) clock_ = root.advertise<rosgraph_msgs::Clock>("/clock", kStateQueueSize);
+  Advertise<tf2_msgs::TFMessage>(
+      root, "/tf", kTfQueueSize, &tf_, [this](const ros::SingleSubscriberPublisher& subscriber) {
+        if (publish_tf_) subscriber.publish(TfMessage(held_start_.world(), held_start_.stamp()));
+      });
+  Advertise<BodyStateArray>(private_nh, "bodies", kStateQueueSize, &bodies_,
+                            [this](const ros::SingleSubscriberPublisher& subscriber) {
+                              subscriber.publish(ToBodyStateArray(
+                                  held_start_.world(), held_start_.stamp(), world_frame_));
+                            });
+  Advertise<visualization_msgs::MarkerArray>(
+      private_nh, "particles", kStateQueueSize, &particles_,
+      [this](const ros::SingleSubscriberPublisher& subscriber) {
+        subscriber.publish(ParticlesMessage(held_start_.world(), held_start_.stamp()));
+      });
   for (std::size_t index = 0; index < world.size(); ++index) OnBodyAdded(world, world.id(index));
 }
 
@@ -81,20 +120,18 @@ void StatePublisher::OnBodyRemoved(const core::World& /*world*/, core::BodyId id
 }
 
 void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
-  if (publish_clock_) {
-    rosgraph_msgs::Clock clock;
-    clock.clock = stamp;
-    clock_.publish(clock);
-  }
-  if (publish_tf_ && tf_.subscribers > 0) PublishTf(world, stamp);
+  if (publish_tf_ && tf_.subscribers > 0) tf_.publisher.publish(TfMessage(world, stamp));
   PublishBodyTopics(world, stamp);
-  if (bodies_.subscribers > 0) PublishBodies(world, stamp);
-  if (particles_.subscribers > 0) PublishParticles(world, stamp);
+  if (bodies_.subscribers > 0) {
+    bodies_.publisher.publish(ToBodyStateArray(world, stamp, world_frame_));
+  }
+  if (particles_.subscribers > 0) particles_.publisher.publish(ParticlesMessage(world, stamp));
   joint_states_.Publish(stamp);
   deleted_marker_ids_.clear();
 }
 
-void StatePublisher::PublishTf(const core::World& world, const ros::Time& stamp) {
+tf2_msgs::TFMessage StatePublisher::TfMessage(const core::World& world,
+                                              const ros::Time& stamp) const {
   tf2_msgs::TFMessage tf;  // one message for all bodies
   tf.transforms.resize(world.size());
   for (std::size_t body = 0; body < world.size(); ++body) {
@@ -105,7 +142,7 @@ void StatePublisher::PublishTf(const core::World& world, const ros::Time& stamp)
     tf.transforms[body].transform =
         ToFrameTransformMsg(world.model(body), world.state(body), frame.origin);
   }
-  tf_.publisher.publish(tf);
+  return tf;
 }
 
 void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time& stamp) {
@@ -115,18 +152,10 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
     if (topics == nullptr) continue;  // not yet advertised
     const BodyFrame& frame = per_body_.at(id).frame;
     if (topics->pose.wanted()) {
-      geometry_msgs::PoseStamped pose;
-      pose.header.stamp = stamp;
-      pose.header.frame_id = world_frame_;
-      pose.pose = ToFramePoseMsg(world.model(body), world.state(body), frame.origin);
-      topics->pose.publisher.publish(pose);
+      topics->pose.publisher.publish(PoseMessage(world, body, frame, world_frame_, stamp));
     }
     if (topics->twist.wanted()) {
-      geometry_msgs::TwistStamped twist;
-      twist.header.stamp = stamp;
-      twist.header.frame_id = world_frame_;
-      twist.twist = ToFrameTwistMsg(world.model(body), world.state(body), frame.origin);
-      topics->twist.publisher.publish(twist);
+      topics->twist.publisher.publish(TwistMessage(world, body, frame, world_frame_, stamp));
     }
     if (topics->odom.wanted()) {
       topics->odom.publisher.publish(
@@ -155,11 +184,40 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
   }
 }
 
-void StatePublisher::PublishBodies(const core::World& world, const ros::Time& stamp) {
-  bodies_.publisher.publish(ToBodyStateArray(world, stamp, world_frame_));
+void StatePublisher::SendHeldBodyOutput(core::BodyId id, BodyTopics::Output output,
+                                        const ros::SingleSubscriberPublisher& subscriber) const {
+  if (!held_start_.held()) return;
+  const core::World& world = held_start_.world();
+  const std::optional<std::size_t> body = world.IndexOf(id);
+  if (!body) return;
+  const ros::Time& stamp = held_start_.stamp();
+  const BodyFrame& frame = per_body_.at(id).frame;
+  switch (output) {
+    case BodyTopics::Output::kPose:
+      subscriber.publish(PoseMessage(world, *body, frame, world_frame_, stamp));
+      return;
+    case BodyTopics::Output::kTwist:
+      subscriber.publish(TwistMessage(world, *body, frame, world_frame_, stamp));
+      return;
+    case BodyTopics::Output::kOdom:
+      subscriber.publish(
+          ToOdometryMsg(world.model(*body), world.state(*body), world_frame_, frame, stamp));
+      return;
+    case BodyTopics::Output::kJointStates: {
+      const BodyTopics::Topics* topics = body_topics_.at(id);
+      if (topics != nullptr && topics->joint_names) {
+        subscriber.publish(HeldJointStatesMsg(*topics->joint_names, stamp));
+      }
+      return;
+    }
+    case BodyTopics::Output::kImu:
+    case BodyTopics::Output::kAppliedWrench:
+      return;  // each needs the step that reached the state: none reached t_0
+  }
 }
 
-void StatePublisher::PublishParticles(const core::World& world, const ros::Time& stamp) {
+visualization_msgs::MarkerArray StatePublisher::ParticlesMessage(const core::World& world,
+                                                                 const ros::Time& stamp) {
   visualization_msgs::MarkerArray markers;
   markers.markers.resize(deleted_marker_ids_.size() + world.size());
   for (std::size_t k = 0; k < deleted_marker_ids_.size(); ++k) {
@@ -189,7 +247,7 @@ void StatePublisher::PublishParticles(const core::World& world, const ros::Time&
       marker.points[i].z = particle_positions_[i].z();
     }
   }
-  particles_.publisher.publish(markers);
+  return markers;
 }
 
 }  // namespace rigid_body_sim

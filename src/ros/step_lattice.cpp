@@ -25,7 +25,10 @@ void WarnIfPublishRateIsRounded(const NodeSettings& settings, std::uint64_t publ
 }  // namespace
 
 StepLattice::StepLattice(const NodeSettings& settings)
-    : lattice_(settings.rate_hz), publish_every_steps_(PublishEverySteps(settings)) {
+    : lattice_(settings.rate_hz),
+      publish_every_steps_(PublishEverySteps(settings)),
+      clock_every_steps_(
+          std::max<std::uint64_t>(1, std::llround(settings.rate_hz / settings.clock_rate_hz))) {
   WarnIfPublishRateIsRounded(settings, publish_every_steps_);
 }
 

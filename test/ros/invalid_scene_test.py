@@ -3,7 +3,8 @@
 
 An invalid scene or parameter (`bodies` not a list, a duplicate or empty
 name, a mass <= 0 or not finite, a position not of 3 finite numbers, a
-non-positive rate, `publish_rate` > `rate`, an unknown integrator, a
+non-positive rate, `publish_rate` > `rate`, a `clock_rate` that does not
+divide `rate` a whole number of times, an unknown integrator, a
 `spawn_file_roots` entry that is not an absolute directory) stops the
 node at start with a non-zero exit and one error line that names the offending
 entry and key.
@@ -287,6 +288,24 @@ class InvalidScene(unittest.TestCase):
         self.check_rejected('publish_rate_above_rate',
                             {'rate': 100.0, 'publish_rate': 200.0, 'bodies': [good_body()]},
                             'publish_rate')
+
+    def test_clock_rate_not_dividing_rate(self):
+        self.check_rejected('clock_rate_not_dividing_rate',
+                            {'rate': 1000.0, 'clock_rate': 300.0, 'bodies': [good_body()]},
+                            'clock_rate')
+
+    def test_clock_rate_above_rate(self):
+        self.check_rejected('clock_rate_above_rate',
+                            {'rate': 1000.0, 'clock_rate': 2000.0, 'bodies': [good_body()]},
+                            'clock_rate')
+
+    def test_clock_rate_zero(self):
+        self.check_rejected('clock_rate_zero',
+                            {'clock_rate': 0.0, 'bodies': [good_body()]}, 'clock_rate')
+
+    def test_start_paused_not_a_bool(self):
+        self.check_rejected('start_paused_not_a_bool',
+                            {'start_paused': 'yes', 'bodies': [good_body()]}, 'start_paused')
 
     def test_unknown_integrator(self):
         self.check_rejected('unknown_integrator',

@@ -39,8 +39,11 @@ struct CountedPublisher {
 
 class BodyTopics {
  public:
+  // A body's outputs.
+  enum class Output { kPose, kTwist, kOdom, kImu, kAppliedWrench, kJointStates };
   // One body's topics; read only once `advertised` is set.
   struct Topics {
+    core::BodyId id;
     std::string body;
     std::string topic_namespace;  // resolved
     CountedPublisher pose;
@@ -59,9 +62,13 @@ class BodyTopics {
   // Called on the stepping thread for each message on a body's wrench topic.
   using WrenchCallback =
       std::function<void(const std::string& body, const geometry_msgs::WrenchStamped& msg)>;
+  // Called on the stepping thread for each subscriber that connects to an
+  // output of a body that is still there (after it is counted).
+  using ConnectCallback = std::function<void(core::BodyId id, Output output,
+                                             const ros::SingleSubscriberPublisher& subscriber)>;
 
   // With `enabled` false no per-body topic is ever advertised.
-  BodyTopics(bool enabled, WrenchCallback on_wrench);
+  BodyTopics(bool enabled, WrenchCallback on_wrench, ConnectCallback on_connect);
   // Stops the advertising thread; topics not yet advertised never are.
   ~BodyTopics();
   BodyTopics(const BodyTopics&) = delete;
@@ -98,6 +105,7 @@ class BodyTopics {
 
   const bool enabled_;
   const WrenchCallback on_wrench_;
+  const ConnectCallback on_connect_;
   core::BodyMap<std::shared_ptr<Topics>> bodies_;  // stepping thread only
   std::size_t body_count_ = 0;                     // stepping thread only
   int step_record_subscribers_ = 0;                // stepping thread only

@@ -14,6 +14,7 @@
 
 #include "rigid_body_sim/core/body_id.h"
 #include "rigid_body_sim/ros/body_topics.h"
+#include "rigid_body_sim/ros/held_start.h"
 
 namespace rigid_body_sim {
 
@@ -25,8 +26,12 @@ sensor_msgs::JointState HeldJointStatesMsg(const std::vector<std::string>& joint
 class HeldJointStates {
  public:
   // Advertises ~joint_states, whatever the bodies: a body spawned later may
-  // hold joints.
-  explicit HeldJointStates(ros::NodeHandle private_nh);
+  // hold joints. While `held_start` holds, a subscriber that connects
+  // receives the joints at its stamp. `held_start` must outlive it.
+  HeldJointStates(ros::NodeHandle private_nh, const HeldStart& held_start);
+  // The connect callback calls this object: it stays where it was made.
+  HeldJointStates(const HeldJointStates&) = delete;
+  HeldJointStates& operator=(const HeldJointStates&) = delete;
 
   // Body `id` holds `joints` (none: nothing to publish for it).
   void OnBodyAdded(core::BodyId id, const std::vector<std::string>& joints);
@@ -37,8 +42,8 @@ class HeldJointStates {
   void Publish(const ros::Time& stamp);
 
  private:
-  // Builds msg_ from bodies_ after a body with joints came or went.
-  void Rebuild();
+  // msg_ at `stamp`, rebuilt from bodies_ if a body with joints came or went.
+  const sensor_msgs::JointState& Message(const ros::Time& stamp);
 
   // The bodies that hold joints, in body order (a spawn appends, a delete
   // keeps the order), with their joints' names.

@@ -38,6 +38,10 @@ struct NodeSettings : RuntimeKeys {
   std::string tf_prefix;    // joined to body and site names for TF (BodyFrameId)
   double rate_hz = 1000.0;  // integration rate, dt = 1 / rate
   bool publish_clock = false;
+  // /clock's rate: rate / clock_rate is a whole number (~rate when not given).
+  double clock_rate_hz = 1000.0;
+  // Publishes t_0 and waits there, paused, until resumed or stepped.
+  bool start_paused = false;
   // Each body's own topics (~<body>/pose, ...) advertised (extension): off
   // spares the master 6 registrations per body in very large scenes.
   bool per_body_topics = true;

@@ -13,8 +13,10 @@
 // thread, which hands what they change to the global queue.
 //
 // Stamps: step n reaches the lattice point K0 + n (StepLattice), K0 fixed
-// when stepping starts; a cycle is published when K0 + n is a multiple of the
-// publish decimation.
+// when stepping starts (with ~start_paused, when the node starts); a cycle is
+// published when K0 + n is a multiple of the publish decimation, and /clock
+// (ClockPublisher) goes out on the ~clock_rate lattice and before every
+// published state.
 #pragma once
 
 #include <cstdint>
@@ -25,6 +27,8 @@
 #include "rigid_body_sim/core/step_pacer.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/body_graph_table.h"
+#include "rigid_body_sim/ros/clock_publisher.h"
+#include "rigid_body_sim/ros/held_start.h"
 #include "rigid_body_sim/ros/lockstep_driver.h"
 #include "rigid_body_sim/ros/loop_control.h"
 #include "rigid_body_sim/ros/node_diagnostics.h"
@@ -54,6 +58,8 @@ class SimulationNode : public LoopControl {
   // Fixes K0 from the clock: the first lattice point at or after now (under
   // lockstep, the first one that is a publish cycle, once it is reached).
   void StartClock();
+  // ~start_paused: t_0 held for every subscriber (HeldStart), the node paused there.
+  void HoldStartState();
   // One step; `publishes_after` when its state will be published.
   void StepOnce(bool publishes_after);
   // Publishes the current state as a cycle and, under lockstep, waits at it
@@ -77,6 +83,11 @@ class SimulationNode : public LoopControl {
   StepLattice lattice_;
   core::StepPacer pacer_;
   WrenchIntake intake_;
+  HeldStart held_start_;  // before the publishers, whose connect callbacks read it
+  // Advertised before every other topic: roscpp's poll thread hands what was
+  // published to the connections topic by topic in the order they were
+  // advertised, so /clock goes out ahead of the outputs of its stamp.
+  ClockPublisher clock_;
   StatePublisher publisher_;
   StaticFrames static_frames_;
   StateHashWorker state_hashes_;

@@ -1,13 +1,17 @@
-// Every outbound per-cycle message (doc/node.md, "Topics and services"): /clock, /tf, each
-// body's own topics (BodyTopics), ~bodies, ~particles and ~joint_states
-// (HeldJointStates), all from the world's state at one stamp, and each built
-// only while someone subscribes.
+// Every outbound per-cycle message but /clock (doc/node.md, "Topics and
+// services"): /tf, each body's own topics (BodyTopics), ~bodies, ~particles
+// and ~joint_states (HeldJointStates), all from the world's state at one
+// stamp, and each built only while someone subscribes: at each publish cycle
+// for every subscriber, and while the node holds its start state (HeldStart)
+// for each subscriber as it connects.
 #pragma once
 
 #include <string>
 #include <vector>
 
 #include <ros/ros.h>
+#include <tf2_msgs/TFMessage.h>
+#include <visualization_msgs/MarkerArray.h>
 #include <Eigen/Core>
 
 #include "rigid_body_sim/core/world.h"
@@ -15,6 +19,7 @@
 #include "rigid_body_sim/ros/body_outputs.h"
 #include "rigid_body_sim/ros/body_topics.h"
 #include "rigid_body_sim/ros/held_joint_states.h"
+#include "rigid_body_sim/ros/held_start.h"
 #include "rigid_body_sim/ros/scene_params.h"
 
 namespace rigid_body_sim {
@@ -26,9 +31,14 @@ class StatePublisher : public core::BodyListener {
  public:
   // Advertises the shared topics now and queues each body's own
   // (BodyTopics); messages on ~<body>/wrench go to `on_body_wrench`. `graph`
-  // holds the graph names of the world's bodies and must outlive it.
+  // holds the graph names of the world's bodies and must outlive it, as must
+  // `held_start`.
   StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings, const core::World& world,
-                 const BodyGraphTable& graph, BodyTopics::WrenchCallback on_body_wrench);
+                 const BodyGraphTable& graph, const HeldStart& held_start,
+                 BodyTopics::WrenchCallback on_body_wrench);
+  // Its connect callbacks call this object: it stays where it was made.
+  StatePublisher(const StatePublisher&) = delete;
+  StatePublisher& operator=(const StatePublisher&) = delete;
 
   void Publish(const core::World& world, const ros::Time& stamp);
   // From the next Publish on.
@@ -45,22 +55,27 @@ class StatePublisher : public core::BodyListener {
   bool wants_step_record() const { return body_topics_.step_record_subscribers() > 0; }
 
  private:
-  template <typename Msg>
+  // `counted` with its subscriber count; `send_held(subscriber)` is called
+  // for each subscriber that connects while the start state is held.
+  template <typename Msg, typename SendHeld>
   void Advertise(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue_size,
-                 CountedPublisher* counted);
+                 CountedPublisher* counted, SendHeld send_held);
 
-  void PublishTf(const core::World& world, const ros::Time& stamp);
+  tf2_msgs::TFMessage TfMessage(const core::World& world, const ros::Time& stamp) const;
   void PublishBodyTopics(const core::World& world, const ros::Time& stamp);
-  void PublishBodies(const core::World& world, const ros::Time& stamp);
-  void PublishParticles(const core::World& world, const ros::Time& stamp);
+  // A body's pose, twist or odom at the held start state, to `subscriber`.
+  void SendHeldBodyOutput(core::BodyId id, BodyTopics::Output output,
+                          const ros::SingleSubscriberPublisher& subscriber) const;
+  visualization_msgs::MarkerArray ParticlesMessage(const core::World& world,
+                                                   const ros::Time& stamp);
 
   const std::string world_frame_;
-  const bool publish_clock_;
   bool publish_tf_;
   const double particle_marker_diameter_m_;
   const std::string tf_prefix_;
   const core::ImuNoise imu_noise_;
   const BodyGraphTable& graph_;
+  const HeldStart& held_start_;
   struct PerBody {
     BodyFrame frame;  // its TF frame and origin
     // Its ~particles marker id: its scene index, then one more per spawn, so
@@ -75,7 +90,6 @@ class StatePublisher : public core::BodyListener {
   CountedPublisher tf_;  // /tf as tf2_ros::TransformBroadcaster advertises it
   CountedPublisher bodies_;
   CountedPublisher particles_;
-  ros::Publisher clock_;
   std::vector<Eigen::Vector3d> particle_positions_;  // scratch for ~particles
 };
 

@@ -1,9 +1,9 @@
 // Where the node's steps fall in time (doc/node.md, "Time lattice"): step n
 // reaches lattice point K0 + n, stamped in whole nanoseconds by
 // core::TimeLattice, and its state is a publish cycle when K0 + n is a
-// multiple of the decimation k = round(rate / publish_rate). K0 is fixed
-// when stepping starts; k follows ~publish_rate at run time, the stamps never
-// change.
+// multiple of the decimation k = round(rate / publish_rate), and a /clock
+// tick when it is a multiple of rate / clock_rate. K0 is fixed when stepping
+// starts; k follows ~publish_rate at run time, the stamps never change.
 #pragma once
 
 #include <cstdint>
@@ -40,11 +40,16 @@ class StepLattice {
   // From the state after `steps` steps to the next publish cycle: 1 to k steps.
   std::uint64_t StepsToNextCycle(std::uint64_t steps) const;
   std::uint64_t publish_every_steps() const { return publish_every_steps_; }
+  // Whether the state after `steps` steps falls on the ~clock_rate lattice.
+  bool IsClockTick(std::uint64_t steps) const {
+    return (static_cast<std::uint64_t>(first_index_) + steps) % clock_every_steps_ == 0;
+  }
 
  private:
   const core::TimeLattice lattice_;
-  std::uint64_t publish_every_steps_;  // k
-  std::int64_t first_index_ = 0;       // K0: t_0's lattice point; the world counts from 0
+  std::uint64_t publish_every_steps_;      // k
+  const std::uint64_t clock_every_steps_;  // rate / clock_rate, whole (scene_settings.cpp)
+  std::int64_t first_index_ = 0;           // K0: t_0's lattice point; the world counts from 0
 };
 
 }  // namespace rigid_body_sim

@@ -103,7 +103,7 @@ class Sensors(object):
         starts once the lockstep controller is connected, sends the first
         cycle's odometry here."""
         while not rospy.is_shutdown() and not all(s.get_num_connections() for s in self._subscribers):
-            rospy.sleep(0.05)
+            rospy.rostime.wallsleep(0.05)  # under use_sim_time no time passes before the first cycle
 
     def at(self, stamp, topics):
         """The messages of `topics` stamped `stamp` (waits for them)."""

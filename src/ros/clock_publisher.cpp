@@ -1,0 +1,37 @@
+#include "rigid_body_sim/ros/clock_publisher.h"
+
+#include <rosgraph_msgs/Clock.h>
+
+namespace rigid_body_sim {
+namespace {
+
+// A subscriber's connection holds this many messages before it drops the
+// oldest: a late wake-up sends the ticks of up to 0.1 s of steps at once
+// (the loop's catch-up limit), 100 at 1 kHz.
+constexpr std::uint32_t kClockQueueSize = 100;
+
+rosgraph_msgs::Clock ClockMsg(const ros::Time& stamp) {
+  rosgraph_msgs::Clock clock;
+  clock.clock = stamp;
+  return clock;
+}
+
+}  // namespace
+
+ClockPublisher::ClockPublisher(const NodeSettings& settings, const HeldStart& held_start)
+    : enabled_(settings.publish_clock && settings.shard.index == 0) {  // one /clock
+  if (!enabled_) return;
+  ros::NodeHandle root;
+  clock_ = root.advertise<rosgraph_msgs::Clock>(
+      "/clock", kClockQueueSize, [&held_start](const ros::SingleSubscriberPublisher& subscriber) {
+        if (held_start.held()) subscriber.publish(ClockMsg(held_start.stamp()));
+      });
+}
+
+void ClockPublisher::Publish(const ros::Time& stamp) {
+  if (!enabled_ || (last_sent_ && stamp <= *last_sent_)) return;
+  clock_.publish(ClockMsg(stamp));
+  last_sent_ = stamp;
+}
+
+}  // namespace rigid_body_sim
