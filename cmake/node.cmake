@@ -26,6 +26,7 @@ add_library(rigid_body_sim_ros
   src/ros/body_outputs.cpp
   src/ros/imu_noise_params.cpp
   src/ros/wrench_intake.cpp
+  src/ros/actuator_command_check.cpp
   src/ros/wrench_frame.cpp
   src/ros/body_state_request.cpp
   src/ros/wrench_job_request.cpp

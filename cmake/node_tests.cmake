@@ -42,6 +42,7 @@ add_rostest(test/ros/invalid_scene.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/readme_examples.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/respawn.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/lockstep.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/lockstep_answers.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/closed_loop.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/quadrotor.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/sharded.test DEPENDENCIES rigid_body_sim_node)
@@ -62,7 +63,7 @@ catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_in
   test/ros/state_hash_worker_test.cpp test/ros/urdf_body_test.cpp
   test/ros/urdf_file_policy_test.cpp
   test/ros/wrench_frame_test.cpp test/ros/scene_frames_test.cpp
-  test/ros/static_frames_test.cpp)
+  test/ros/static_frames_test.cpp test/ros/actuator_command_check_test.cpp)
 # urdf_body_test and scene_frames_test read config/quadrotor.urdf from the source tree.
 target_compile_definitions(ros_units_test PRIVATE
   RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
