@@ -78,3 +78,10 @@ target_include_directories(interface_md5_test PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(interface_md5_test ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES} gtest_main)
 target_compile_definitions(interface_md5_test PRIVATE RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 add_dependencies(interface_md5_test ${${PROJECT_NAME}_EXPORTED_TARGETS})
+
+# The C++ client (cmake/client.cmake) against two nodes.
+add_rostest_gtest(cpp_client_test test/ros/cpp_client.test test/ros/cpp_client_test.cpp)
+if(TARGET cpp_client_test)
+  target_link_libraries(cpp_client_test rigid_body_sim_client ${catkin_LIBRARIES})
+  add_dependencies(cpp_client_test rigid_body_sim_node)
+endif()
