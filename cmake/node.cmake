@@ -80,7 +80,3 @@ install(DIRECTORY launch config
 # resolves to this copy in an install space.
 install(PROGRAMS scripts/on_core.sh
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
-# launch/quadrotor.launch starts the quadrotor example's controller, which
-# lives with its test (test/ros/quadrotor/).
-catkin_install_python(PROGRAMS test/ros/quadrotor/quadrotor_controller.py
-  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
