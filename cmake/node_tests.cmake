@@ -50,6 +50,7 @@ add_rostest(test/ros/hostile_input.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/client.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/empty_world.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/body_frames.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/cpp_examples.test DEPENDENCIES rigid_body_sim_node step_client hold_controller)
 
 # The node's pieces that need no master: message conversions, the per-body
 # outputs and the sites' static transforms, the wrench and request checks, the
