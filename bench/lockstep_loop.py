@@ -1,20 +1,33 @@
 #!/usr/bin/python3
-"""The cost of lockstep: a node in lockstep with a trivial Python controller
-(rigid_body_sim.testing.LockstepController answering every cycle with no
-wrench) at real_time_factor 0, against the same node running free.
+"""The cost of lockstep: a node in lockstep with a trivial controller at
+real_time_factor 0, against the same node running free. The controllers:
+this script through the Python client (rigid_body_sim.testing.
+LockstepController), answering every cycle with no wrench or with one body
+wrench, and the C++ client's hold_controller example
+(src/examples/hold_controller.cpp, a LockstepController answering every
+cycle with one body wrench), both on ~lockstep_answers.
 
 Scene: --bodies generated boxes (8 particles each), rate 1000 Hz. Cases:
 
-  free_every_step      no lockstep, publish_rate 1000, ~bodies subscribed by
-                       this script (the same messages as the lockstep case)
-  lockstep_every_step  lockstep, publish_rate 1000: one step per cycle
-  lockstep_every_10    lockstep, publish_rate 100: ten steps per cycle
+  free_every_step                 no lockstep, publish_rate 1000, ~bodies
+                                  subscribed by this script (the same
+                                  messages as the lockstep cases)
+  python_empty_every_step         lockstep, publish_rate 1000 (one step per
+                                  cycle), Python, empty answers
+  python_body_wrench_every_step   the same, one body wrench per answer
+  cpp_body_wrench_every_step      the same from C++
+  python_empty_every_10           lockstep, publish_rate 100 (ten steps per
+                                  cycle), Python, empty answers
+  python_body_wrench_every_10     the same, one body wrench per answer
+  cpp_body_wrench_every_10        the same from C++
 
 For each: steps per second of simulation from the node's diagnostics
-(`steps` over --window seconds of wall time), cycles per second, wall µs per
-cycle, and the lockstep overhead per cycle = µs per cycle in lockstep − µs
-per step free (both publishing every step). The node runs on --node-cpu, this
-script (controller) and a private master on --bench-cpu.
+(`steps` over --window seconds of wall time), cycles per second (in
+lockstep: steps per second over steps per cycle; free: the messages this
+script received), wall µs per cycle, and the lockstep overhead per cycle = µs
+per cycle in lockstep − µs per step free (both publishing every step). The
+node runs on --node-cpu, the controller (this script or the C++ program)
+and a private master on --bench-cpu.
 
 Writes bench/results/lockstep_loop.md (also printed).
 
@@ -39,8 +52,15 @@ def parse_args():
 
 
 ARGS = parse_args()
-CASES = [("free_every_step", False, 1000.0), ("lockstep_every_step", True, 1000.0),
-         ("lockstep_every_10", True, 100.0)]
+CPP_CONTROLLER = "hold_controller"  # its node name, as it runs it
+# (name, controller: None (free), "python" or "cpp", body wrench in each answer, publish_rate)
+CASES = [("free_every_step", None, False, 1000.0),
+         ("python_empty_every_step", "python", False, 1000.0),
+         ("python_body_wrench_every_step", "python", True, 1000.0),
+         ("cpp_body_wrench_every_step", "cpp", True, 1000.0),
+         ("python_empty_every_10", "python", False, 100.0),
+         ("python_body_wrench_every_10", "python", True, 100.0),
+         ("cpp_body_wrench_every_10", "cpp", True, 100.0)]
 
 
 def scene(lockstep, publish_rate, controller):
@@ -54,22 +74,32 @@ def scene(lockstep, publish_rate, controller):
     return params
 
 
-def measure(procs, log_dir, name, lockstep, publish_rate):
+def measure(procs, log_dir, name, controller, body_wrench, publish_rate):
     import rospy
     from node_harness import Diagnostics
     from rigid_body_sim.testing import LockstepController
-    rospy.set_param(NS, scene(lockstep, publish_rate, rospy.get_name()))
+    from rigid_body_sim.testing import body_wrench as make_body_wrench
+    lockstep = controller is not None
+    listed = "/" + CPP_CONTROLLER if controller == "cpp" else rospy.get_name()
+    rospy.set_param(NS, scene(lockstep, publish_rate, listed))
     diag = Diagnostics()
     cycles = [0]
+    answer = [make_body_wrench("b0")] if body_wrench else []  # zero: b0 stays where it is
 
     def count(msg_or_states, _stamp=None):
         cycles[0] += 1
-        return []
+        return answer
 
-    if lockstep:
+    helper = None
+    if controller == "python":
         helper = LockstepController(count, NS)
-    else:
+    elif controller is None:
         helper = rospy.Subscriber(NS + "/bodies", rospy.AnyMsg, count, queue_size=100, tcp_nodelay=True)
+    else:  # hold_controller holds b0 at z = 0, where it is: zero wrenches
+        helper = procs.start(["taskset", "-c", str(ARGS.bench_cpu),
+                     devel_program(os.environ["RBS_BENCH_WS"], CPP_CONTROLLER),
+                     "__name:=" + CPP_CONTROLLER, "_body:=b0", "_target_z:=0.0"],
+                    os.path.join(log_dir, name + "_controller.log"))
     node = procs.start(["taskset", "-c", str(ARGS.node_cpu),
                         devel_program(os.environ["RBS_BENCH_WS"], "rigid_body_sim_node"),
                         "__name:=" + NODE_NAME], os.path.join(log_dir, name + ".log"))
@@ -87,12 +117,14 @@ def measure(procs, log_dir, name, lockstep, publish_rate):
         sys.exit("%s: no diagnostics from the node (log in %s)" % (name, log_dir))
     wall = end[0] - start[0]
     steps_per_s = (end[1]["steps"] - start[1]["steps"]) / wall
-    cycles_per_s = (cycles1 - cycles0) / wall
+    cycles_per_s = steps_per_s * publish_rate / 1000.0 if lockstep else (cycles1 - cycles0) / wall
     procs.stop(node)
-    if lockstep:
+    if controller == "python":
         helper.stop()
-    else:
+    elif controller is None:
         helper.unregister()
+    else:
+        procs.stop(helper)
     return {"case": name, "steps_per_s": steps_per_s, "cycles_per_s": cycles_per_s,
             "us_per_cycle": 1e6 / cycles_per_s if cycles_per_s > 0 else float("inf"),
             "timeouts": end[1].get("lockstep_timeouts", 0.0)}
@@ -111,17 +143,19 @@ def main():
         rows = [measure(procs, log_dir, *case) for case in CASES]
     finally:
         procs.stop_all()
-    free = rows[0]
-    lines = ["| case | steps/s | cycles/s | µs per cycle | lockstep timeouts |", "|---|---|---|---|---|"]
+    free_us_per_step = 1e6 / rows[0]["steps_per_s"]
+    lines = ["| case | steps/s | cycles/s | µs per cycle | overhead µs per cycle | lockstep timeouts |",
+             "|---|---|---|---|---|---|"]
     for r in rows:
-        lines.append("| %s | %.0f | %.0f | %.1f | %d |" % (r["case"], r["steps_per_s"], r["cycles_per_s"],
-                                                         r["us_per_cycle"], r["timeouts"]))
-    overhead = rows[1]["us_per_cycle"] - 1e6 / free["steps_per_s"]
+        every_step = r["case"].endswith("every_step") and r["case"] != "free_every_step"
+        overhead = "%.1f" % (r["us_per_cycle"] - free_us_per_step) if every_step else ""
+        lines.append("| %s | %.0f | %.0f | %.1f | %s | %d |" % (
+            r["case"], r["steps_per_s"], r["cycles_per_s"], r["us_per_cycle"], overhead, r["timeouts"]))
     text = ("Lockstep at real_time_factor 0, %d bodies of 8 particles, rate 1000 Hz, window %.0f s, "
-            "node on core %d, controller (Python) and master on core %d.\n\n%s\n\n"
-            "Lockstep overhead per cycle: %.1f µs (µs per cycle in lockstep_every_step − µs per step "
-            "in free_every_step).\n" % (ARGS.bodies, ARGS.window, ARGS.node_cpu, ARGS.bench_cpu,
-                                        "\n".join(lines), overhead))
+            "node on core %d, controller (Python: this script; C++: hold_controller) and master on "
+            "core %d. Lockstep overhead per cycle = µs per cycle − µs per step in free_every_step "
+            "(both publishing every step).\n\n%s\n" % (ARGS.bodies, ARGS.window, ARGS.node_cpu,
+                                                       ARGS.bench_cpu, "\n".join(lines)))
     print(text)
     os.makedirs(ARGS.out, exist_ok=True)
     with open(os.path.join(ARGS.out, "lockstep_loop.md"), "w") as f:

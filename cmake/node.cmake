@@ -26,6 +26,7 @@ add_library(rigid_body_sim_ros
   src/ros/body_outputs.cpp
   src/ros/imu_noise_params.cpp
   src/ros/wrench_intake.cpp
+  src/ros/actuator_command_check.cpp
   src/ros/wrench_frame.cpp
   src/ros/body_state_request.cpp
   src/ros/wrench_job_request.cpp
@@ -79,8 +80,4 @@ install(DIRECTORY launch config
 # launch/sharded.launch's launch-prefix: $(find rigid_body_sim)/scripts/on_core.sh
 # resolves to this copy in an install space.
 install(PROGRAMS scripts/on_core.sh
-  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
-# launch/quadrotor.launch starts the quadrotor example's controller, which
-# lives with its test (test/ros/quadrotor/).
-catkin_install_python(PROGRAMS test/ros/quadrotor/quadrotor_controller.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -48,8 +48,9 @@ add_rostest(test/ros/invalid_scene.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/readme_examples.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/respawn.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/lockstep.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/lockstep_answers.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/closed_loop.test DEPENDENCIES rigid_body_sim_node)
-add_rostest(test/ros/quadrotor.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/quadrotor.test DEPENDENCIES rigid_body_sim_node quadrotor_controller)
 add_rostest(test/ros/sharded.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/hostile_input.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/client.test DEPENDENCIES rigid_body_sim_node)
@@ -58,6 +59,7 @@ add_rostest(test/ros/body_frames.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/tf_prefix.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/clock_rate.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/start_paused.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/cpp_examples.test DEPENDENCIES rigid_body_sim_node step_client hold_controller)
 
 # The node's pieces that need no master: message conversions, the per-body
 # outputs and the sites' static transforms, the wrench and request checks, the
@@ -71,7 +73,7 @@ catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_in
   test/ros/state_hash_worker_test.cpp test/ros/urdf_body_test.cpp
   test/ros/urdf_file_policy_test.cpp
   test/ros/wrench_frame_test.cpp test/ros/scene_frames_test.cpp
-  test/ros/static_frames_test.cpp)
+  test/ros/static_frames_test.cpp test/ros/actuator_command_check_test.cpp)
 # urdf_body_test and scene_frames_test read config/quadrotor.urdf from the source tree.
 target_compile_definitions(ros_units_test PRIVATE
   RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
@@ -86,3 +88,10 @@ target_include_directories(interface_md5_test PRIVATE ${catkin_INCLUDE_DIRS})
 target_link_libraries(interface_md5_test ${catkin_LIBRARIES} ${YAML_CPP_LIBRARIES} gtest_main)
 target_compile_definitions(interface_md5_test PRIVATE RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
 add_dependencies(interface_md5_test ${${PROJECT_NAME}_EXPORTED_TARGETS})
+
+# The C++ client (cmake/client.cmake) against two nodes.
+add_rostest_gtest(cpp_client_test test/ros/cpp_client.test test/ros/cpp_client_test.cpp)
+if(TARGET cpp_client_test)
+  target_link_libraries(cpp_client_test rigid_body_sim_client ${catkin_LIBRARIES})
+  add_dependencies(cpp_client_test rigid_body_sim_node)
+endif()

@@ -12,7 +12,6 @@ knows its internals. States come as `BodyState` tuples of numpy arrays, keyed
 by body name in scene order.
 """
 import collections
-import math
 import struct
 import threading
 import warnings
@@ -22,8 +21,9 @@ import rospy
 import yaml
 from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
-from rigid_body_sim.msg import (BodyStateArray, ParticleWrench,
-                                StampedParticleWrenchArray)
+from rigid_body_sim.msg import BodyStateArray
+from rigid_body_sim.msg import BodyWrench as BodyWrenchMsg
+from rigid_body_sim.msg import LockstepAnswer, ParticleWrench
 from rigid_body_sim.srv import (ApplyBodyWrench, ClearBodyWrenches, DeleteBody,
                                 SetBodyState, SpawnBody, StepWithWrenches)
 from std_srvs.srv import Empty, SetBool
@@ -41,7 +41,8 @@ BodyState = collections.namedtuple('BodyState', [
 StepResult = collections.namedtuple('StepResult', ['sim_time', 'states', 'state_hash', 'message',
                                                    'stamp'])
 
-# A wrench on a whole body for the steps of one call (see body_wrench()).
+# A wrench on a whole body for the steps of one call or one lockstep cycle
+# (see body_wrench()).
 BodyWrench = collections.namedtuple('BodyWrench', ['body', 'force', 'torque', 'point', 'frame'])
 
 _FNV_OFFSET_BASIS = 0xcbf29ce484222325
@@ -97,42 +98,25 @@ def particle_wrench(body, particle=0, force=(0, 0, 0), torque=(0, 0, 0), frame='
 
 
 def body_wrench(body, force=(0, 0, 0), torque=(0, 0, 0), point=(0, 0, 0), frame=''):
-    """A BodyWrench for SimClient.step(): `force` [N] at `point` of `body`
-    (body frame [m], (0, 0, 0) = the COM), `torque` [N m] a pure couple; axes
-    of `frame` ('' = world, the body's name = its own axes)."""
+    """A BodyWrench for SimClient.step() or a LockstepController's answer:
+    `force` [N] at `point` of `body` (body frame [m], (0, 0, 0) = the COM;
+    step() only), `torque` [N m] a pure couple; axes of `frame` ('' = world,
+    the body's name = its own axes)."""
     return BodyWrench(body, tuple(force), tuple(torque), tuple(point), frame)
 
 
-def _rate_fraction(rate):
-    """`rate` [Hz] as the node's time lattice takes it: (numerator,
-    denominator) with the fewest decimals, at most nine, that write it to
-    1e-9 relative."""
-    for decimals in range(10):
-        scaled = rate * 10.0 ** decimals
-        numerator = math.floor(scaled)
-        if scaled - numerator >= 0.5:  # llround: half away from zero
-            numerator += 1
-        if abs(scaled - numerator) <= 1e-9 * scaled:
-            break
-    return numerator, 10 ** decimals
-
-
-def _window(steps, rate_fraction):
-    """(steps - 1/2) dt as a rospy.Duration, rounded half up to the
-    nanosecond, for a node at `rate_fraction` (see _rate_fraction()): the node
-    compares times in float seconds, and half a step keeps the window's end
-    clear of the step after these."""
-    rate_numerator, rate_denominator = rate_fraction
-    numerator = (2 * steps - 1) * 10 ** 9 * rate_denominator
-    return rospy.Duration(0, (numerator + rate_numerator) // (2 * rate_numerator))
-
-
-def _apply_for_steps(apply_body_wrench, wrench, steps, rate_fraction):
-    """A BodyWrench as a ~apply_body_wrench job on exactly the next `steps`
-    steps; the service's response."""
-    return apply_body_wrench(wrench.body, wrench.frame, Point(*wrench.point),
-                             Wrench(force=Vector3(*wrench.force), torque=Vector3(*wrench.torque)),
-                             rospy.Time(), _window(steps, rate_fraction))
+def _body_wrench_msg(wrench):
+    """A BodyWrench as the message a lockstep answer carries: held as on the
+    body's wrench topic, from the next step."""
+    if any(wrench.point):
+        raise ValueError('body_wrench(%r, point=%r): a lockstep answer\'s body wrench acts at the '
+                         'origin of its frame; name a site of the body as its frame instead'
+                         % (wrench.body, wrench.point))
+    msg = BodyWrenchMsg()
+    msg.body = wrench.body
+    msg.wrench.header.frame_id = wrench.frame
+    msg.wrench.wrench = Wrench(force=Vector3(*wrench.force), torque=Vector3(*wrench.torque))
+    return msg
 
 
 def _stamp(msg_stamp):
@@ -153,7 +137,6 @@ class SimClient(object):
         self.wait_for_node(timeout)
         self.rate = rospy.get_param(self._name('rate'), 1000)  # the node's default
         self.dt = 1.0 / self.rate
-        self._rate_fraction = _rate_fraction(self.rate)
         self._services = {}
         for name, srv in (('set_paused', SetBool), ('step_with_wrenches', StepWithWrenches),
                           ('reset', Empty), ('clear_wrenches', Empty),
@@ -200,18 +183,20 @@ class SimClient(object):
         entries are named in its message; RuntimeError if no step was taken.
 
         Each of `body_wrenches` (BodyWrench, see body_wrench()) becomes a
-        ~apply_body_wrench job from the next step over a window that ends
-        half a step before the step after these, so it acts on exactly these
-        steps. The jobs are added before the steps: when the node refuses
+        ~apply_body_wrench job from the next step over (steps - 1/2) dt: the
+        window ends half a step clear of the step after these, so it acts on
+        exactly these steps. The jobs are added before the steps: when the node refuses
         one (RuntimeError with its message), no step is taken but the jobs
         before it stay; when it refuses the steps (not paused), all of them
         stay. A body wrench held across calls is push() (until cleared, or
         for a duration) or a message on ~<body>/wrench."""
         if steps < 1:
             raise ValueError('steps must be >= 1, got %r' % (steps,))
+        window = rospy.Duration.from_sec((steps - 0.5) * self.dt)
         for wrench in body_wrenches:
-            self._check(_apply_for_steps(self._services['apply_body_wrench'], wrench, steps,
-                                         self._rate_fraction), 'apply_body_wrench')
+            self._call('apply_body_wrench', wrench.body, wrench.frame, Point(*wrench.point),
+                       Wrench(force=Vector3(*wrench.force), torque=Vector3(*wrench.torque)),
+                       rospy.Time(), window)
         response = self._call('step_with_wrenches', list(wrenches), steps)
         return StepResult(response.sim_time, to_states(response.states), response.state_hash,
                           response.message, _stamp(response.states.header.stamp))
@@ -301,47 +286,45 @@ class LockstepController(object):
     stamp)` gets each ~bodies message's states (body name -> BodyState) and
     its stamp and returns what to apply (an empty list or None: nothing):
     ParticleWrench messages (see particle_wrench()), held as on
-    ~particle_wrenches, and BodyWrench tuples (see body_wrench()), each acting
-    on exactly the steps up to the next cycle (a ~apply_body_wrench job,
-    added before the answer is sent, so a run repeats bit for bit). A body
-    wrench is thus the command of one cycle: an answer that comes after the
-    node's ~lockstep_timeout leaves those steps without it. List this node's
-    name (rospy.get_name()) in the simulator's ~lockstep_publishers."""
+    ~particle_wrenches, and BodyWrench tuples (see body_wrench(), at the
+    origin of their frame), each the command of one cycle. Both go in one
+    LockstepAnswer on ~lockstep_answers, held before the next step, so a run
+    repeats bit for bit. The node holds a body wrench as on the body's wrench
+    topic, until the next one for that body: a body named in one answer and
+    not in the next gets a zero wrench there, and an answer that comes after
+    the node's ~lockstep_timeout leaves the previous command acting meanwhile.
+    List this node's name (rospy.get_name()) in the simulator's
+    ~lockstep_publishers."""
 
     def __init__(self, control, node='/rigid_body_sim'):
         self.node = rospy.resolve_name(node)
         self._control = control
-        rate = rospy.get_param(self.node + '/rate', 1000)  # the node's defaults
-        publish_rate = rospy.get_param(self.node + '/publish_rate', 100)
-        self._rate_fraction = _rate_fraction(rate)
-        self._cycle_steps = max(1, int(math.floor(rate / publish_rate + 0.5)))  # the node's llround
-        self._apply_body_wrench = rospy.ServiceProxy(self.node + '/apply_body_wrench', ApplyBodyWrench,
-                                                     persistent=True)
+        self._pushed = []  # bodies with a body wrench in the last answer, in order
         # Publisher first: the simulator starts once both connections exist.
         # queue_size None publishes in the callback's thread, without the
         # hand-over to a queue thread that would add to every cycle (rospy
         # warns about it as if it were an oversight).
         with warnings.catch_warnings():
             warnings.simplefilter('ignore')
-            self._answers = rospy.Publisher(self.node + '/lockstep_wrenches', StampedParticleWrenchArray,
+            self._answers = rospy.Publisher(self.node + '/lockstep_answers', LockstepAnswer,
                                             queue_size=None, tcp_nodelay=True)
         self._bodies = rospy.Subscriber(self.node + '/bodies', BodyStateArray, self._on_bodies,
                                         queue_size=10, tcp_nodelay=True)
 
     def _on_bodies(self, msg):
-        answer = StampedParticleWrenchArray()
+        answer = LockstepAnswer()
         answer.header.stamp = msg.header.stamp
         for item in self._control(to_states(msg), msg.header.stamp) or []:
             if isinstance(item, BodyWrench):
-                response = _apply_for_steps(self._apply_body_wrench, item, self._cycle_steps,
-                                            self._rate_fraction)
-                if not response.success:
-                    rospy.logwarn_throttle(1.0, '%s/apply_body_wrench: %s' % (self.node, response.message))
+                answer.body_wrenches.append(_body_wrench_msg(item))
             else:
                 answer.wrenches.append(item)
+        pushed = [entry.body for entry in answer.body_wrenches]
+        answer.body_wrenches += [_body_wrench_msg(body_wrench(body)) for body in self._pushed
+                                 if body not in pushed]
+        self._pushed = list(collections.OrderedDict.fromkeys(pushed))
         self._answers.publish(answer)
 
     def stop(self):
         self._bodies.unregister()
         self._answers.unregister()
-        self._apply_body_wrench.close()

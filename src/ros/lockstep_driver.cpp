@@ -24,19 +24,25 @@ LockstepGate::Clock::duration Seconds(double seconds) {
 }  // namespace
 
 LockstepDriver::LockstepDriver(const ros::NodeHandle& private_nh, const NodeSettings& settings,
-                               WrenchIntake* intake, TakeEntries take_entries)
+                               WrenchIntake* intake, TakeEntries take_entries,
+                               TakeAnswer take_answer)
     : private_nh_(private_nh),
       settings_(settings.lockstep),
       rate_hz_(settings.rate_hz),
       gate_(settings.lockstep.publishers, settings.lockstep.timeout_s),
       intake_(*intake),
       take_entries_(std::move(take_entries)),
-      answers_(private_nh_.subscribe("lockstep_wrenches", kAnswerQueueSize,
+      take_answer_(std::move(take_answer)),
+      wrench_answers_(private_nh_.subscribe("lockstep_wrenches", kAnswerQueueSize,
+                                            &LockstepDriver::OnLockstepWrenches, this,
+                                            ros::TransportHints().tcpNoDelay())),
+      answers_(private_nh_.subscribe("lockstep_answers", kAnswerQueueSize,
                                      &LockstepDriver::OnLockstepAnswer, this,
                                      ros::TransportHints().tcpNoDelay())) {}
 
 void LockstepDriver::WaitForControllers(const StatePublisher& publisher) {
-  const std::string answer_topic = private_nh_.resolveName("lockstep_wrenches");
+  const std::vector<std::string> answer_topics = {private_nh_.resolveName("lockstep_wrenches"),
+                                                  private_nh_.resolveName("lockstep_answers")};
   const std::string state_topic = private_nh_.resolveName("bodies");
   const std::size_t listed = gate_.publishers().size();
   const Clock::time_point give_up = Clock::now() + Seconds(settings_.startup_timeout_s);
@@ -45,9 +51,10 @@ void LockstepDriver::WaitForControllers(const StatePublisher& publisher) {
   while (ros::ok()) {
     // The master's account, and this node's own connections, which the first
     // published state needs.
-    missing = PublishersNotConnected(gate_.publishers(), answer_topic, state_topic);
-    const bool connected = answers_.getNumPublishers() >= listed &&
-                           static_cast<std::size_t>(publisher.bodies_subscribers()) >= listed;
+    missing = PublishersNotConnected(gate_.publishers(), answer_topics, state_topic);
+    const std::size_t answering = wrench_answers_.getNumPublishers() + answers_.getNumPublishers();
+    const bool connected =
+        answering >= listed && static_cast<std::size_t>(publisher.bodies_subscribers()) >= listed;
     if (missing.empty() && connected) return;
     if (Clock::now() >= give_up) break;
     callbacks.callAvailable(ros::WallDuration(kPollPeriod_s));
@@ -55,11 +62,11 @@ void LockstepDriver::WaitForControllers(const StatePublisher& publisher) {
   if (!ros::ok()) return;
   gate_.CountStartupTimeout();
   ROS_WARN(
-      "lockstep: after %g s (~lockstep_startup_timeout) %s not both publishing on %s and "
+      "lockstep: after %g s (~lockstep_startup_timeout) %s not both publishing on %s or %s and "
       "subscribed to %s; starting anyway, each cycle waits at most ~lockstep_timeout %g s",
       settings_.startup_timeout_s,
       missing.empty() ? "some controllers are" : (Join(missing) + " is").c_str(),
-      answer_topic.c_str(), state_topic.c_str(), settings_.timeout_s);
+      answer_topics[0].c_str(), answer_topics[1].c_str(), state_topic.c_str(), settings_.timeout_s);
 }
 
 std::int64_t LockstepDriver::WaitForFirstCycle(const StepLattice& lattice,
@@ -104,30 +111,45 @@ void LockstepDriver::LeaveCycle() {
 
 std::string LockstepDriver::publisher_list() const { return Join(gate_.publishers()); }
 
-void LockstepDriver::OnLockstepAnswer(
+void LockstepDriver::OnLockstepWrenches(
     const ros::MessageEvent<const StampedParticleWrenchArray>& event) {
   const StampedParticleWrenchArray& msg = *event.getConstMessage();
-  const std::string& sender = event.getPublisherName();
-  switch (gate_.Sort(sender, msg.header.stamp)) {
+  if (Admit(event.getPublisherName(), msg.header.stamp, msg.wrenches.size(),
+            "~lockstep_wrenches")) {
+    take_entries_(msg.wrenches);
+  }
+}
+
+void LockstepDriver::OnLockstepAnswer(const ros::MessageEvent<const LockstepAnswer>& event) {
+  const LockstepAnswer& msg = *event.getConstMessage();
+  const std::size_t entries = msg.wrenches.size() + msg.body_wrenches.size() + msg.actuators.size();
+  if (Admit(event.getPublisherName(), msg.header.stamp, entries, "~lockstep_answers")) {
+    take_answer_(msg);
+  }
+}
+
+bool LockstepDriver::Admit(const std::string& sender, const ros::Time& stamp, std::size_t entries,
+                           const char* topic) {
+  switch (gate_.Sort(sender, stamp)) {
     case LockstepGate::Answer::kFutureStamp:
       intake_.Reject("lockstep answer", WrenchMsgRejection::kLockstepFutureStamp,
-                     Format("stamp %.9f from %s is after the last published cycle; its %zu entries "
-                            "are not held",
-                            msg.header.stamp.toSec(), sender.c_str(), msg.wrenches.size()));
-      return;
+                     Format("stamp %.9f from %s on %s is after the last published cycle; its %zu "
+                            "entries are not held",
+                            stamp.toSec(), sender.c_str(), topic, entries));
+      return false;
     case LockstepGate::Answer::kUnlisted:
       if (warnings_.Ready()) {
         LogOffThread(LogLevel::kWarn,
                      Format("lockstep: %s is not in ~lockstep_publishers (%s): its entries on "
-                            "~lockstep_wrenches are held, but it answers no cycle",
-                            sender.c_str(), publisher_list().c_str()));
+                            "%s are held, but it answers no cycle",
+                            sender.c_str(), publisher_list().c_str(), topic));
       }
-      break;
+      return true;
     case LockstepGate::Answer::kThisCycle:
     case LockstepGate::Answer::kLate:
-      break;
+      return true;
   }
-  take_entries_(msg.wrenches);
+  return true;
 }
 
 }  // namespace rigid_body_sim

@@ -36,7 +36,7 @@ bool Contains(const std::vector<std::string>& names, const std::string& name) {
 }  // namespace
 
 std::vector<std::string> PublishersNotConnected(const std::vector<std::string>& publishers,
-                                                const std::string& answer_topic,
+                                                const std::vector<std::string>& answer_topics,
                                                 const std::string& state_topic) {
   XmlRpc::XmlRpcValue request;
   request[0] = ros::this_node::getName();
@@ -46,7 +46,11 @@ std::vector<std::string> PublishersNotConnected(const std::vector<std::string>& 
       system_state.getType() != XmlRpc::XmlRpcValue::TypeArray || system_state.size() < 2) {
     return publishers;
   }
-  const std::vector<std::string> answering = NodesOf(system_state[0], answer_topic);
+  std::vector<std::string> answering;
+  for (const std::string& topic : answer_topics) {
+    const std::vector<std::string> nodes = NodesOf(system_state[0], topic);
+    answering.insert(answering.end(), nodes.begin(), nodes.end());
+  }
   const std::vector<std::string> listening = NodesOf(system_state[1], state_topic);
   std::vector<std::string> missing;
   for (const std::string& publisher : publishers) {

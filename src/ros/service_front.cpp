@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "rigid_body_sim/core/state_hash.h"
+#include "rigid_body_sim/ros/actuator_command_check.h"
 #include "rigid_body_sim/ros/body_state_request.h"
 #include "rigid_body_sim/ros/conversions.h"
 #include "rigid_body_sim/ros/join.h"
@@ -103,6 +104,23 @@ void ServiceFront::OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg) 
 void ServiceFront::OnBodyWrench(const std::string& body, const geometry_msgs::WrenchStamped& msg) {
   if (const auto wrench = intake_.TakeBodyWrench(msg, body, loop_.start_stamp(), world_.time())) {
     editor_.HoldBodyWrench(*wrench);
+  }
+}
+
+void ServiceFront::TakeLockstepAnswer(const LockstepAnswer& answer) {
+  TakeWrenches(answer.wrenches);
+  const std::size_t body_wrenches = intake_.EntriesTaken(answer.body_wrenches.size());
+  for (std::size_t i = 0; i < body_wrenches; ++i) {
+    OnBodyWrench(answer.body_wrenches[i].body, answer.body_wrenches[i].wrench);
+  }
+  // No body of this node has actuators: an entry naming one is rejected, and
+  // one that commands none changes nothing.
+  const std::vector<std::string> no_actuators;
+  const std::size_t actuators = intake_.EntriesTaken(answer.actuators.size());
+  for (std::size_t i = 0; i < actuators; ++i) {
+    const CheckedActuatorCommand checked =
+        CheckActuatorCommand(answer.actuators[i], intake_.frames(), no_actuators);
+    if (!checked.accepted()) intake_.Reject("actuator command", checked.rejection, checked.detail);
   }
 }
 

@@ -63,10 +63,12 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
   world_.AddListener(&static_frames_);
   world_.AddListener(&diagnostics_);
   if (settings_.lockstep.enabled) {
-    lockstep_.emplace(private_nh, settings_, &intake_,
-                      [this](const std::vector<ParticleWrench>& entries) {
-                        front_.TakeWrenches(entries);  // as on ~particle_wrenches
-                      });
+    lockstep_.emplace(
+        private_nh, settings_, &intake_,
+        [this](const std::vector<ParticleWrench>& entries) {
+          front_.TakeWrenches(entries);  // as on ~particle_wrenches
+        },
+        [this](const LockstepAnswer& answer) { front_.TakeLockstepAnswer(answer); });
   }
 }
 

@@ -35,6 +35,10 @@ const char* ToString(WrenchMsgRejection rejection) {
       return "other_shard";
     case WrenchMsgRejection::kUnknownParticle:
       return "unknown_particle";
+    case WrenchMsgRejection::kUnknownActuator:
+      return "unknown_actuator";
+    case WrenchMsgRejection::kLengthMismatch:
+      return "length_mismatch";
   }
   return "unknown";
 }

@@ -108,7 +108,7 @@ import rigid_body_sim.msg, rigid_body_sim.srv, rigid_body_sim.testing
 prefix = sys.argv[1] + os.sep
 found = {'rigid_body_sim_node': roslib.packages.find_node('rigid_body_sim', 'rigid_body_sim_node'),
          'on_core.sh': roslib.packages.find_node('rigid_body_sim', 'on_core.sh'),
-         'quadrotor_controller.py': roslib.packages.find_node('rigid_body_sim', 'quadrotor_controller.py')}
+         'quadrotor_controller': roslib.packages.find_node('rigid_body_sim', 'quadrotor_controller')}
 for name, paths in found.items():
     print(name, paths)
     assert paths and paths[0].startswith(prefix), '%s not in the install space' % name

@@ -15,11 +15,14 @@
 #include <gtest/gtest.h>
 #include <yaml-cpp/yaml.h>
 
+#include "rigid_body_sim/ActuatorCommand.h"
 #include "rigid_body_sim/ApplyBodyWrench.h"
 #include "rigid_body_sim/BodyState.h"
 #include "rigid_body_sim/BodyStateArray.h"
+#include "rigid_body_sim/BodyWrench.h"
 #include "rigid_body_sim/ClearBodyWrenches.h"
 #include "rigid_body_sim/DeleteBody.h"
+#include "rigid_body_sim/LockstepAnswer.h"
 #include "rigid_body_sim/ParticleWrench.h"
 #include "rigid_body_sim/ParticleWrenchArray.h"
 #include "rigid_body_sim/SetBodyState.h"
@@ -47,8 +50,11 @@ std::string ServiceMd5() {
 }
 
 Table Messages() {
-  return {{"BodyState", MessageMd5<BodyState>()},
+  return {{"ActuatorCommand", MessageMd5<ActuatorCommand>()},
+          {"BodyState", MessageMd5<BodyState>()},
           {"BodyStateArray", MessageMd5<BodyStateArray>()},
+          {"BodyWrench", MessageMd5<BodyWrench>()},
+          {"LockstepAnswer", MessageMd5<LockstepAnswer>()},
           {"ParticleWrench", MessageMd5<ParticleWrench>()},
           {"ParticleWrenchArray", MessageMd5<ParticleWrenchArray>()},
           {"StampedParticleWrenchArray", MessageMd5<StampedParticleWrenchArray>()}};

@@ -103,6 +103,13 @@ TEST(WrenchIntake, CountsEachRejectionOnceByReasonAndCapsArrays) {
   EXPECT_EQ(intake.rejected(WrenchMsgRejection::kTooManyEntries), 5u);
   EXPECT_EQ(intake.rejected_messages(), 8u);
   EXPECT_STREQ(ToString(WrenchMsgRejection::kTooManyEntries), "too_many_entries");
+  // A lockstep answer's body wrenches and actuator commands: the same cap.
+  EXPECT_EQ(intake.EntriesTaken(WrenchIntake::kMaxArrayEntries), WrenchIntake::kMaxArrayEntries);
+  EXPECT_EQ(intake.rejected_messages(), 8u);
+  EXPECT_EQ(intake.EntriesTaken(WrenchIntake::kMaxArrayEntries + 3),
+            WrenchIntake::kMaxArrayEntries);
+  EXPECT_EQ(intake.rejected(WrenchMsgRejection::kTooManyEntries), 8u);
+  EXPECT_EQ(intake.rejected_messages(), 11u);
 }
 
 TEST(WrenchIntake, ListsEachRejectedEntryByIndexForAService) {

@@ -2,8 +2,8 @@
 // at start, the wait for every listed controller and for the first publish
 // cycle; after each published cycle, the gate the loop does not step past
 // until the controllers have answered or the timeout has passed; and the
-// answers on ~lockstep_wrenches, sorted by LockstepGate. Its warnings are
-// throttled to one a second. Stepping thread only.
+// answers on ~lockstep_wrenches and ~lockstep_answers, sorted by LockstepGate
+// alike. Its warnings are throttled to one a second. Stepping thread only.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include <rigid_body_sim/LockstepAnswer.h>
 #include <rigid_body_sim/ParticleWrench.h>
 #include <rigid_body_sim/StampedParticleWrenchArray.h>
 #include <ros/ros.h>
@@ -27,20 +28,25 @@ namespace rigid_body_sim {
 class LockstepDriver {
  public:
   using Clock = LockstepGate::Clock;
-  // Where an answer's entries go: held as those of ~particle_wrenches.
+  // Where the entries of an answer on ~lockstep_wrenches go: held as those
+  // of ~particle_wrenches.
   using TakeEntries = std::function<void(const std::vector<ParticleWrench>&)>;
+  // Where an answer on ~lockstep_answers goes: each entry held as on its own topic.
+  using TakeAnswer = std::function<void(const LockstepAnswer&)>;
 
-  // Subscribes to ~lockstep_wrenches: an answer stamped after the last
-  // published cycle is rejected through `intake` (counted, warned), any
-  // other answer's entries go to `take_entries`. `intake` must outlive it.
+  // Subscribes to ~lockstep_wrenches and ~lockstep_answers: an answer
+  // stamped after the last published cycle is rejected through `intake`
+  // (counted, warned), any other answer goes to `take_entries` or
+  // `take_answer`. `intake` must outlive it.
   LockstepDriver(const ros::NodeHandle& private_nh, const NodeSettings& settings,
-                 WrenchIntake* intake, TakeEntries take_entries);
+                 WrenchIntake* intake, TakeEntries take_entries, TakeAnswer take_answer);
   // The subscription calls this object: it stays where it was made.
   LockstepDriver(const LockstepDriver&) = delete;
   LockstepDriver& operator=(const LockstepDriver&) = delete;
 
   // The start's wait: until every listed controller publishes on
-  // ~lockstep_wrenches and subscribes to `publisher`'s ~bodies, or
+  // ~lockstep_wrenches or ~lockstep_answers and subscribes to `publisher`'s
+  // ~bodies, or
   // ~lockstep_startup_timeout (then counted as a timeout, with a warning).
   // Serves the global callback queue meanwhile.
   void WaitForControllers(const StatePublisher& publisher);
@@ -68,7 +74,12 @@ class LockstepDriver {
   const LockstepGate& gate() const { return gate_; }
 
  private:
-  void OnLockstepAnswer(const ros::MessageEvent<const StampedParticleWrenchArray>& event);
+  void OnLockstepWrenches(const ros::MessageEvent<const StampedParticleWrenchArray>& event);
+  void OnLockstepAnswer(const ros::MessageEvent<const LockstepAnswer>& event);
+  // Sorts an answer from `sender` stamped `stamp` with `entries` entries
+  // arrived on `topic`; whether its entries are held.
+  bool Admit(const std::string& sender, const ros::Time& stamp, std::size_t entries,
+             const char* topic);
 
   ros::NodeHandle private_nh_;
   const LockstepSettings settings_;
@@ -77,7 +88,10 @@ class LockstepDriver {
   LogThrottle warnings_{1.0};  // one lockstep warning a second at most
   WrenchIntake& intake_;
   const TakeEntries take_entries_;
-  ros::Subscriber answers_;  // last: its callback uses everything above
+  const TakeAnswer take_answer_;
+  // Last: their callbacks use everything above.
+  ros::Subscriber wrench_answers_;  // ~lockstep_wrenches
+  ros::Subscriber answers_;         // ~lockstep_answers
 };
 
 }  // namespace rigid_body_sim

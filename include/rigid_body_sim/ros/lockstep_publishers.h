@@ -1,7 +1,7 @@
 // Whether the controllers listed in ~lockstep_publishers are connected, as
 // lockstep's start waits for them (doc/node.md, "Lockstep"): each publishes
-// on the answer topic and subscribes to the state topic, by the master's
-// account.
+// on one of the answer topics and subscribes to the state topic, by the
+// master's account.
 #pragma once
 
 #include <string>
@@ -9,11 +9,11 @@
 
 namespace rigid_body_sim {
 
-// The listed nodes the master does not show as publishing on `answer_topic`
-// and subscribing to `state_topic` (resolved names); all of them when the
-// master cannot be asked.
+// The listed nodes the master does not show as publishing on one of
+// `answer_topics` and subscribing to `state_topic` (resolved names); all of
+// them when the master cannot be asked.
 std::vector<std::string> PublishersNotConnected(const std::vector<std::string>& publishers,
-                                                const std::string& answer_topic,
+                                                const std::vector<std::string>& answer_topics,
                                                 const std::string& state_topic);
 
 }  // namespace rigid_body_sim

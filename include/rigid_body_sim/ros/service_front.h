@@ -18,6 +18,7 @@
 #include <rigid_body_sim/ApplyBodyWrench.h>
 #include <rigid_body_sim/ClearBodyWrenches.h>
 #include <rigid_body_sim/DeleteBody.h>
+#include <rigid_body_sim/LockstepAnswer.h>
 #include <rigid_body_sim/ParticleWrench.h>
 #include <rigid_body_sim/ParticleWrenchArray.h>
 #include <rigid_body_sim/SetBodyState.h>
@@ -52,6 +53,11 @@ class ServiceFront {
                     std::vector<std::string>* rejections = nullptr);
   // A message on ~<body>/wrench (StatePublisher's per-body topics).
   void OnBodyWrench(const std::string& body, const geometry_msgs::WrenchStamped& msg);
+  // A lockstep answer on ~lockstep_answers: its particle wrenches as an
+  // array on ~particle_wrenches, each body wrench as a message on that
+  // body's wrench topic, each actuator command checked as on that body's
+  // actuators topic.
+  void TakeLockstepAnswer(const LockstepAnswer& answer);
 
  private:
   void OnParticleWrench(const ParticleWrench::ConstPtr& msg);

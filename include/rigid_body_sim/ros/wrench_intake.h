@@ -36,11 +36,14 @@ enum class WrenchMsgRejection {
   kLockstepFutureStamp,  // a lockstep answer stamped after the last published cycle
   kOtherShard,           // a body another shard simulates: ignored, counted apart, not a rejection
   kUnknownParticle,      // a particle wrench for a body without particles (an inertial one)
+  kUnknownActuator,      // an actuator command naming an actuator the body does not have
+  kLengthMismatch,       // an actuator command whose commands do not match its names
 };
-constexpr std::size_t kWrenchMsgRejectionCount = 9;
+constexpr std::size_t kWrenchMsgRejectionCount = 11;
 // "non_finite", "unknown_body", "particle_out_of_range", "unknown_frame",
-// "too_many_entries", "lockstep_future_stamp", "unknown_particle" (the
-// diagnostics key is "rejected_" + this), "other_shard".
+// "too_many_entries", "lockstep_future_stamp", "unknown_particle",
+// "unknown_actuator", "length_mismatch" (the diagnostics key is "rejected_" +
+// this), "other_shard".
 const char* ToString(WrenchMsgRejection rejection);
 
 // What a message is checked against: the world's bodies and the frames that
@@ -138,6 +141,13 @@ class WrenchIntake {
       rejections->push_back("wrenches[" + std::to_string(taken) + ".." +
                             std::to_string(entries.size() - 1) + "]: too_many_entries");
     }
+  }
+  // How many of a list's `count` entries are read (kMaxArrayEntries at
+  // most); the rest are rejected unread (too_many_entries).
+  std::size_t EntriesTaken(std::size_t count) {
+    const std::size_t taken = std::min(count, kMaxArrayEntries);
+    if (taken < count) RejectExcessEntries(count - taken);
+    return taken;
   }
   // A whole message rejected for `reason`: counted and warned about.
   void Reject(const char* what, WrenchMsgRejection reason, const std::string& detail);

@@ -1,6 +1,7 @@
 #!/usr/bin/python3
 """The quadrotor example as a downstream test: launch/quadrotor.launch's
-controller (quadrotor_controller.py) takes the URDF quadrotor off from rest
+controller (src/examples/quadrotor_controller.cpp, on the C++ client's
+LockstepController, answering with body wrenches) takes the URDF quadrotor off from rest
 under gravity in lockstep with the simulator (quadrotor/run.launch). After
 5 s of simulated time base_link's origin (its odometry) is within 1 cm of
 (0, 0, 1) m, its yaw within 1 mrad of 90 degrees and its z axis within

@@ -1,0 +1,43 @@
+#include "rigid_body_sim/ros/actuator_command_check.h"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace rigid_body_sim {
+
+CheckedActuatorCommand CheckActuatorCommand(const ActuatorCommand& msg, const WrenchFrames& frames,
+                                            const std::vector<std::string>& actuator_names) {
+  const auto reject = [](WrenchMsgRejection reason, std::string detail) {
+    return CheckedActuatorCommand{reason, std::move(detail)};
+  };
+  if (!frames.world->FindBody(msg.body)) {
+    return reject(frames.other_shard_bodies.count(msg.body) > 0 ? WrenchMsgRejection::kOtherShard
+                                                                : WrenchMsgRejection::kUnknownBody,
+                  NotHereMessage(msg.body, frames));
+  }
+  const std::string of_body = " for body " + QuotedName(msg.body);
+  const std::size_t expected = msg.names.empty() ? actuator_names.size() : msg.names.size();
+  if (msg.commands.size() != expected) {
+    return reject(
+        WrenchMsgRejection::kLengthMismatch,
+        std::to_string(msg.commands.size()) + " commands" + of_body + ", " +
+            (msg.names.empty() ? "which has " + std::to_string(actuator_names.size()) + " actuators"
+                               : "naming " + std::to_string(msg.names.size()) + " actuators"));
+  }
+  for (std::size_t i = 0; i < msg.commands.size(); ++i) {
+    if (!std::isfinite(msg.commands[i])) {
+      return reject(WrenchMsgRejection::kNonFinite,
+                    "NaN or infinite command " + std::to_string(i) + of_body);
+    }
+  }
+  for (const std::string& name : msg.names) {
+    if (std::find(actuator_names.begin(), actuator_names.end(), name) == actuator_names.end()) {
+      return reject(WrenchMsgRejection::kUnknownActuator,
+                    "body " + QuotedName(msg.body) + " has no actuator " + QuotedName(name));
+    }
+  }
+  return {};
+}
+
+}  // namespace rigid_body_sim
