@@ -99,8 +99,8 @@ def particle_wrench(body, particle=0, force=(0, 0, 0), torque=(0, 0, 0), frame='
 
 def body_wrench(body, force=(0, 0, 0), torque=(0, 0, 0), point=(0, 0, 0), frame=''):
     """A BodyWrench for SimClient.step() or a LockstepController's answer:
-    `force` [N] at `point` of `body` (body frame [m], (0, 0, 0) = the COM;
-    step() only), `torque` [N m] a pure couple; axes of `frame` ('' = world,
+    `force` [N] at `point` of `body` (body frame [m], (0, 0, 0) = its origin:
+    the COM, or the reference origin with `frame: reference`; step() only), `torque` [N m] a pure couple; axes of `frame` ('' = world,
     the body's name = its own axes)."""
     return BodyWrench(body, tuple(force), tuple(torque), tuple(point), frame)
 
@@ -213,8 +213,9 @@ class SimClient(object):
 
     def set_body_state(self, body, position=(0, 0, 0), orientation=(0, 0, 0, 1),
                        linear_velocity=(0, 0, 0), angular_velocity=(0, 0, 0)):
-        """~set_body_state: the COM's `position` [m], `orientation` (x, y, z,
-        w; normalised by the node), `linear_velocity` [m/s] and
+        """~set_body_state: the body frame origin's `position` [m] (the COM,
+        or the reference origin with `frame: reference`), `orientation` (x, y,
+        z, w; normalised by the node), `linear_velocity` [m/s] and
         `angular_velocity` [rad/s], world axes. RuntimeError with the node's
         message when refused."""
         self._call('set_body_state', body,

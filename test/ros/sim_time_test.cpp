@@ -1,11 +1,13 @@
 // /clock as a use_sim_time stack needs it (doc/node.md, "Time"): with
 // ~publish_clock and ~clock_rate = ~rate (the default), one /clock on every
 // step, strictly increasing; so a ros::Timer at the step rate in a
-// use_sim_time node (this one) fires on every step and not late, but for the
-// steps a loaded machine takes late (kLoadAllowance).
+// use_sim_time node (this one) fires on every step, none late.
 //
 // Scene (sim_time.test): /use_sim_time true, rate 1000 Hz (dt = 1 ms, a
-// whole number of ns), publish_rate 100 Hz, real_time_factor 1, one body.
+// whole number of ns), publish_rate 100 Hz, real_time_factor 0.1, one body.
+// roscpp's timer thread polls simulation time every wall millisecond; at
+// 10 ms of wall time a step, what is tested is that every step brings a
+// /clock, not how late this VM's scheduler wakes a thread.
 #include <cstdint>
 #include <cstdio>
 #include <memory>
@@ -20,14 +22,7 @@ namespace {
 using rbs_test::WaitFor;
 
 constexpr std::int64_t kDtNs = 1000000;  // 1 / rate
-constexpr double kWindow_s = 2.0;        // wall seconds of recording per case
-// On a machine whose cores are all busy the node wakes late now and then and
-// takes the steps due at once, and this process's timer thread, which polls
-// simulation time every millisecond, sees time jump by two steps or more: an
-// event skipped or late that no /clock could have saved. At most this share
-// of the events may be so; with /clock once per publish cycle nine steps in
-// ten would go without a tick.
-constexpr double kLoadAllowance = 0.05;
+constexpr double kWindow_s = 12.0;       // wall seconds of recording per case: 1,200 steps
 
 // Each case reads its messages in one thread from a queue of its own.
 class SimTime : public ::testing::Test {
@@ -108,14 +103,10 @@ TEST_F(SimTime, TimerAtTheStepRateFiresOnEveryStep) {
   }
   const std::size_t counted = events.size() - kSettling;
   EXPECT_EQ(off_lattice, 0u) << "of " << counted << " events off the step lattice";
-  const auto allowed = static_cast<std::size_t>(kLoadAllowance * static_cast<double>(counted));
-  std::printf("%zu timer events: %zu after a step without a tick, %zu late\n", counted, skipped,
-              late);
-  EXPECT_LE(skipped, allowed) << "of " << counted
-                              << " events do not follow the one before by one step: steps "
-                                 "without a tick";
-  EXPECT_LE(late, allowed) << "of " << counted
-                           << " events more than one step behind the latest /clock";
+  EXPECT_EQ(skipped, 0u) << "of " << counted
+                         << " events do not follow the one before by one step: steps "
+                            "without a tick";
+  EXPECT_EQ(late, 0u) << "of " << counted << " events more than one step behind the latest /clock";
 }
 
 }  // namespace
