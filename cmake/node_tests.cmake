@@ -77,7 +77,8 @@ catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_in
 # urdf_body_test and scene_frames_test read config/quadrotor.urdf from the source tree.
 target_compile_definitions(ros_units_test PRIVATE
   RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")
-target_include_directories(ros_units_test PRIVATE ${catkin_INCLUDE_DIRS})
+# test/common is shared with the core's tests.
+target_include_directories(ros_units_test PRIVATE ${catkin_INCLUDE_DIRS} test/common)
 target_link_libraries(ros_units_test rigid_body_sim_ros gtest_main)
 add_dependencies(ros_units_test ${${PROJECT_NAME}_EXPORTED_TARGETS})
 

@@ -24,6 +24,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <xmlrpcpp/XmlRpcValue.h>
@@ -239,7 +240,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   // The node's scene path ends in the World, which checks names and states.
   std::optional<rigid_body_sim::core::World> world;
   try {
-    world.emplace(rigid_body_sim::core::WorldDef{}, rigid_body_sim::CoreDefs(scene_bodies));
+    world.emplace(rigid_body_sim::core::WorldDef{},
+                  rigid_body_sim::CoreDefs(std::move(scene_bodies)));
   } catch (const std::invalid_argument& error) {
     if (Verbose()) std::fprintf(stderr, "World: %s\n", error.what());
     return 0;

@@ -20,9 +20,12 @@
 # (wrench messages, steps, resets, ~set_body_state), service_text_fuzzer
 # (~spawn_body's YAML text).
 #
-# The generated message headers come from a catkin devel space: RBS_WS
-# (default /tmp/ws_fuzz) gets the message targets built if it has none.
-# Objects and binaries go to FUZZ_BUILD (default /tmp/rbs_fuzz_build).
+# The generated headers and the list of sources come from a catkin
+# workspace, RBS_WS (default /tmp/ws_fuzz): the script builds its message and
+# dynamic_reconfigure targets, and the sources are those CMake compiles into
+# the package's two libraries there (build/compile_commands.json). Objects,
+# the library of them and the binaries go to FUZZ_BUILD (default
+# /tmp/rbs_fuzz_build); FUZZ_JOBS (default 2) compile at a time.
 set -euo pipefail
 ws_default=/tmp/ws_fuzz
 # shellcheck source=scripts/common.sh
@@ -40,14 +43,32 @@ t0=$(date +%s)
 bash "$repo/scripts/install_deps.sh" clang-14 libclang-rt-14-dev
 cxx=clang++-14
 
-# ---- generated message headers ----------------------------------------------
-if [ ! -f "$ws/devel/include/rigid_body_sim/ParticleWrench.h" ]; then
-  echo "fuzz: building the message headers in $ws"
-  RBS_WS="$ws" bash "$repo/scripts/build.sh" -j1 rigid_body_sim_generate_messages_cpp
+# ---- generated headers and the sources --------------------------------------
+# Every run: a no-op when the workspace is current, else catkin_make runs
+# CMake again, which brings compile_commands.json up to date with the lists
+# in CMakeLists.txt and cmake/node.cmake.
+mkdir -p "$out/obj"
+echo "fuzz: the generated headers and the source list in $ws"
+RBS_WS="$ws" bash "$repo/scripts/build.sh" -j1 rigid_body_sim_generate_messages_cpp rigid_body_sim_gencfg \
+  >"$out/ws.log" 2>&1 || {
+  tail -n 30 "$out/ws.log"
+  echo "fuzz: the workspace build failed: see $out/ws.log"
+  exit 1
+}
+# The sources of rigid_body_sim_core and rigid_body_sim_ros as CMake compiles
+# them (every source but the node's main), relative to the checkout.
+mapfile -t sources < <(/usr/bin/python3 -c '
+import json, os, re, sys
+for entry in json.load(open(sys.argv[1])):
+    if re.search(r" -o CMakeFiles/rigid_body_sim_(core|ros)\.dir/", entry["command"]):
+        print(os.path.relpath(entry["file"], sys.argv[2]))' \
+  "$ws/build/compile_commands.json" "$ws/src/rigid_body_sim")
+if [ ${#sources[@]} -eq 0 ]; then
+  echo "fuzz: no sources of rigid_body_sim_core or rigid_body_sim_ros in $ws/build/compile_commands.json"
+  exit 1
 fi
 
 # ---- build ------------------------------------------------------------------
-mkdir -p "$out/obj"
 # -O2: at -O1 Eigen's fixed-size products stay loops and calls, which the
 # sanitizers and the coverage instrumentation then cost on every element.
 cxxflags=(-std=c++17 -O2 -g -fno-omit-frame-pointer
@@ -55,20 +76,16 @@ cxxflags=(-std=c++17 -O2 -g -fno-omit-frame-pointer
   -I"$repo/include" -I"$ws/devel/include" -isystem /usr/include/eigen3 -DNDEBUG)
 # The core's integer comparisons are loop bounds and counts, not input
 # checks: tracing them for the fuzzer's comparison hints cost most of the
-# time of a step. Its edges are still covered.
-core_flags=(-fno-sanitize-coverage=trace-cmp)
+# time of a step. Its edges are still covered. src/core holds its private
+# headers (CMake's PRIVATE include directory).
+core_flags=(-fno-sanitize-coverage=trace-cmp -I"$repo/src/core")
 # Objects built with other flags are built again.
 stamp="$cxx ${cxxflags[*]} ${core_flags[*]}"
 if [ "$(cat "$out/obj/flags" 2>/dev/null)" != "$stamp" ]; then
   rm -f "$out"/obj/*.o
   echo "$stamp" >"$out/obj/flags"
 fi
-# The project's own code gets the coverage instrumentation; the sources are
-# the core's list in CMakeLists.txt plus the node files under test.
-mapfile -t sources < <(grep -oE 'src/core/[A-Za-z0-9_/]+\.cpp' "$repo/CMakeLists.txt")
-sources+=(src/ros/scene_params.cpp src/ros/scene_settings.cpp src/ros/scene_bodies.cpp
-  src/ros/param_values.cpp src/ros/imu_noise_params.cpp src/ros/conversions.cpp src/ros/wrench_intake.cpp
-  src/ros/log_thread.cpp src/ros/body_state_request.cpp src/ros/yaml_value.cpp src/ros/yaml_sizing.cpp)
+# The project's own code gets the coverage instrumentation.
 export repo out cxx core_flags_text="${core_flags[*]}"
 # shellcheck disable=SC2016  # expanded by the inner bash
 printf '%s\n' "${sources[@]}" | xargs -P "$jobs" -I{} bash -c '
@@ -81,10 +98,17 @@ printf '%s\n' "${sources[@]}" | xargs -P "$jobs" -I{} bash -c '
   fi' _ {} "${cxxflags[@]}"
 objs=()
 for s in "${sources[@]}"; do objs+=("$out/obj/$(echo "$s" | tr / _).o"); done
-ros_libs=(-L/usr/lib/x86_64-linux-gnu -lroscpp -lxmlrpcpp -lrostime -lroscpp_serialization
-  -lrosconsole -lcpp_common -lboost_system -lyaml-cpp -lyaml -lpthread)
+# A static library: a target links only the objects it reaches, so the
+# node's parts that none reaches (publishers, services, the node itself)
+# need none of their ROS libraries here.
+rm -f "$out/librigid_body_sim_fuzz.a"
+ar rcs "$out/librigid_body_sim_fuzz.a" "${objs[@]}"
+ros_libs=(-L/usr/lib/x86_64-linux-gnu -lurdf -lurdfdom_model -lroslib -lroscpp -lxmlrpcpp -lrostime
+  -lroscpp_serialization -lrosconsole -lcpp_common -lconsole_bridge -lboost_system -lyaml-cpp -lyaml
+  -lpthread)
 for t in "${targets[@]}"; do
-  "$cxx" "${cxxflags[@]}" -fsanitize=fuzzer "$repo/fuzz/$t.cpp" "${objs[@]}" "${ros_libs[@]}" -o "$out/$t"
+  "$cxx" "${cxxflags[@]}" -fsanitize=fuzzer "$repo/fuzz/$t.cpp" "$out/librigid_body_sim_fuzz.a" \
+    "${ros_libs[@]}" -o "$out/$t"
 done
 t_built=$(date +%s)
 echo "fuzz: built ${targets[*]} in $((t_built - t0)) s"

@@ -5,6 +5,7 @@
 #include <set>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <ros/names.h>
@@ -281,10 +282,10 @@ std::vector<SceneBody> ParseBodies(const XmlRpcValue& bodies, const UrdfParamLoo
   return scene_bodies;
 }
 
-std::vector<core::BodyDef> CoreDefs(const std::vector<SceneBody>& bodies) {
+std::vector<core::BodyDef> CoreDefs(std::vector<SceneBody> bodies) {
   std::vector<core::BodyDef> defs;
   defs.reserve(bodies.size());
-  for (const SceneBody& body : bodies) defs.push_back(body.def);
+  for (SceneBody& body : bodies) defs.push_back(std::move(body.def));
   return defs;
 }
 

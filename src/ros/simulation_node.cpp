@@ -10,6 +10,7 @@
 
 #include "rigid_body_sim/core/state_hash.h"
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/scene_bodies.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -30,19 +31,12 @@ core::WorldDef MakeWorldDef(const NodeSettings& settings) {
   return def;
 }
 
-std::vector<core::BodyDef> TakeCoreDefs(std::vector<SceneBody>* bodies) {
-  std::vector<core::BodyDef> defs;
-  defs.reserve(bodies->size());
-  for (SceneBody& body : *bodies) defs.push_back(std::move(body.def));
-  return defs;
-}
-
 }  // namespace
 
 SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
     : settings_(scene.settings),
       graph_(scene.bodies, ResolveGraphName),
-      world_(MakeWorldDef(settings_), TakeCoreDefs(&scene.bodies)),
+      world_(MakeWorldDef(settings_), CoreDefs(std::move(scene.bodies))),  // graph_ has read them
       lattice_(settings_),
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
       intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix,

@@ -2,11 +2,11 @@
 // constructor and setters through it, and its spin check against the World's
 // own substep count.
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include <gtest/gtest.h>
 
+#include "check_message.h"
 #include "rigid_body_sim/core/check.h"
 #include "rigid_body_sim/core/format_number.h"
 #include "rigid_body_sim/core/validate.h"
@@ -16,19 +16,9 @@
 namespace rigid_body_sim::core {
 namespace {
 
-const double kInf = std::numeric_limits<double>::infinity();
-const double kNan = std::numeric_limits<double>::quiet_NaN();
-
-// The std::invalid_argument message of `check`, or "accepted".
-template <typename Check>
-std::string MessageOf(Check check) {
-  try {
-    check();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "accepted";
-}
+using rigid_body_sim::test::kInf;
+using rigid_body_sim::test::kNan;
+using rigid_body_sim::test::MessageOf;
 
 std::string WorldMessage(const WorldDef& def) {
   return MessageOf([&] { World(def, {BodyDef(test::PointBody(), BodyState{})}); });

@@ -3,29 +3,16 @@
 // the core's checks of the World's settings.
 #include <gtest/gtest.h>
 
-#include <limits>
-#include <stdexcept>
-#include <string>
-
+#include "check_message.h"
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/ros/runtime_keys.h"
 
 namespace rigid_body_sim {
 namespace {
 
-const double kInf = std::numeric_limits<double>::infinity();
-const double kNan = std::numeric_limits<double>::quiet_NaN();
-
-// The std::invalid_argument message of `check`, or "accepted".
-template <typename Check>
-std::string MessageOf(Check check) {
-  try {
-    check();
-  } catch (const std::invalid_argument& error) {
-    return error.what();
-  }
-  return "accepted";
-}
+using test::kInf;
+using test::kNan;
+using test::MessageOf;
 
 TEST(RuntimeKeys, TheDefaultsAreValid) {
   EXPECT_EQ(MessageOf([] { CheckRuntimeKeys(RuntimeKeys{}, 1000.0); }), "accepted");

@@ -200,8 +200,8 @@ TEST(SceneFrames, SiteNamesAreUniqueAmongBodiesAndSites) {
             "bodies[1] (name 'tip'): name duplicates a site of bodies[0]");
 
   // ~spawn_body: the entry is read alone, the world refuses the clash.
-  const std::vector<SceneBody> scene = Parse("[" + Puck("a", ", sites: [{name: tip}]") + "]");
-  core::World world(core::WorldDef{}, CoreDefs(scene));
+  core::World world(core::WorldDef{},
+                    CoreDefs(Parse("[" + Puck("a", ", sites: [{name: tip}]") + "]")));
   SceneBody spawned =
       ParseBodyEntry(XmlRpcFromYaml(Puck("b", ", sites: [{name: tip}]")), world.size());
   try {

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <utility>
 
 #include "rigid_body_sim/core/inertia.h"
 #include "rigid_body_sim/core/world.h"
@@ -357,10 +358,9 @@ TEST(SceneParams, ANamespaceIsAGraphNameNoOtherBodyResolvesTo) {
 }
 
 TEST(SceneParams, NamesAndStatesAreCheckedByTheWorldBuiltFromTheScene) {
-  const std::vector<SceneBody> scene_bodies =
-      ParseBodies(List({Dumbbell("twin"), Dumbbell("twin")}));
+  std::vector<SceneBody> scene_bodies = ParseBodies(List({Dumbbell("twin"), Dumbbell("twin")}));
   try {
-    core::World(core::WorldDef{}, CoreDefs(scene_bodies));
+    const core::World world(core::WorldDef{}, CoreDefs(std::move(scene_bodies)));
     FAIL() << "duplicate names accepted";
   } catch (const std::invalid_argument& error) {
     EXPECT_STREQ(error.what(), "bodies[1] (name 'twin'): name duplicates bodies[0]");

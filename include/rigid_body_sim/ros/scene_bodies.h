@@ -37,8 +37,8 @@ SceneBody ParseBodyEntry(const XmlRpc::XmlRpcValue& body, std::size_t index,
                          const UrdfParamLookup& lookup = LookupMasterParam,
                          const UrdfFilePolicy& files = UrdfFilePolicy::AnyPath());
 
-// The core's definitions of `bodies`, in order (copies share the models'
-// particles).
-std::vector<core::BodyDef> CoreDefs(const std::vector<SceneBody>& bodies);
+// The core's definitions of `bodies`, in order. By value, so that a caller
+// done with its bodies moves them in; a copy shares the models' particles.
+std::vector<core::BodyDef> CoreDefs(std::vector<SceneBody> bodies);
 
 }  // namespace rigid_body_sim
