@@ -4,7 +4,7 @@
 # engines and matplotlib). Skips apt entirely when everything is already there.
 set -euo pipefail
 packages=(
-  build-essential cmake clang-format clang-tidy pyflakes3 shellcheck catkin python3-catkin-pkg python3-rospkg
+  build-essential cmake clang-format clang-tidy pyflakes3 shellcheck catkin-lint catkin python3-catkin-pkg python3-rospkg
   ros-core-dev libroscpp-dev librostest-dev python3-rostest
   ros-message-generation ros-message-runtime
   libtf2-ros-dev libtf2-eigen-dev libtf2-msgs-dev libgeometry-msgs-dev
