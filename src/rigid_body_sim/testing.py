@@ -301,6 +301,9 @@ class LockstepController(object):
         self.node = rospy.resolve_name(node)
         self._control = control
         self._pushed = []  # bodies with a body wrench in the last answer, in order
+        # stop() waits for an answer being sent, so none goes to a closed topic.
+        self._sending = threading.Lock()
+        self._stopped = False
         # Publisher first: the simulator starts once both connections exist.
         # queue_size None publishes in the callback's thread, without the
         # hand-over to a queue thread that would add to every cycle (rospy
@@ -324,8 +327,12 @@ class LockstepController(object):
         answer.body_wrenches += [_body_wrench_msg(body_wrench(body)) for body in self._pushed
                                  if body not in pushed]
         self._pushed = list(collections.OrderedDict.fromkeys(pushed))
-        self._answers.publish(answer)
+        with self._sending:
+            if not self._stopped:
+                self._answers.publish(answer)
 
     def stop(self):
         self._bodies.unregister()
+        with self._sending:
+            self._stopped = True
         self._answers.unregister()
