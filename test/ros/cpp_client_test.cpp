@@ -73,13 +73,15 @@ TEST(SimClient, SetsStatesResetsSpawnsAndDeletes) {
   geometry_msgs::Twist twist;
   twist.linear.y = 0.5;
   sim.SetBodyState("puck", pose, twist);
-  const BodyState* moved = Find(sim.Step(10).states, "puck");
+  const StepResult after_ten = sim.Step(10);  // Find points into its states
+  const BodyState* moved = Find(after_ten.states, "puck");
   ASSERT_NE(moved, nullptr);
   EXPECT_NEAR(moved->pose.position.y, 0.5 * 10 * kDt, 1e-15);
   EXPECT_EQ(moved->pose.position.z, 1.0);
 
   sim.Reset();
-  const BodyState* reset = Find(sim.Step(1).states, "puck");
+  const StepResult after_reset = sim.Step(1);
+  const BodyState* reset = Find(after_reset.states, "puck");
   ASSERT_NE(reset, nullptr);
   EXPECT_EQ(reset->pose.position.z, 0.0);
   EXPECT_EQ(reset->twist.linear.y, 0.0);
