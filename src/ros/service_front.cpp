@@ -36,6 +36,19 @@ std::optional<std::string> StepRefusal(bool paused, std::uint32_t steps) {
 
 }  // namespace
 
+template <typename Request, typename Response>
+ros::ServiceServer ServiceFront::AdvertiseOnLane(const char* service,
+                                                 bool (ServiceFront::*serve)(Request&, Response&)) {
+  const boost::function<bool(Request&, Response&)> on_lane =
+      [this, service, serve](Request& request, Response& response) {
+        const std::optional<bool> served =
+            requests_.OnSteppingThread([&] { return (this->*serve)(request, response); });
+        if (!served) return Reply(service, false, "the node is shutting down", &response);
+        return *served;
+      };
+  return requests_.node_handle().advertiseService(service, on_lane);
+}
+
 ServiceFront::ServiceFront(const ros::NodeHandle& private_nh, const NodeSettings& settings,
                            LoopControl* loop, WorldEditor* editor, WrenchIntake* intake)
     : loop_(*loop),
@@ -47,8 +60,12 @@ ServiceFront::ServiceFront(const ros::NodeHandle& private_nh, const NodeSettings
       private_nh_(private_nh),
       spawn_files_(UrdfFilePolicy::UnderRoots(settings.spawn_file_roots)),
       requests_(private_nh_),
-      spawn_service_(
-          requests_.node_handle().advertiseService("spawn_body", &ServiceFront::OnSpawnBody, this)),
+      lane_services_{
+          requests_.node_handle().advertiseService("spawn_body", &ServiceFront::OnSpawnBody, this),
+          AdvertiseOnLane("set_body_state", &ServiceFront::OnSetBodyState),
+          AdvertiseOnLane("apply_body_wrench", &ServiceFront::OnApplyBodyWrench),
+          AdvertiseOnLane("clear_body_wrenches", &ServiceFront::OnClearBodyWrenches),
+          AdvertiseOnLane("delete_body", &ServiceFront::OnDeleteBody)},
       runtime_config_(
           requests_.node_handle(), settings,
           [this](const NodeSettings& next) {
@@ -71,15 +88,7 @@ ServiceFront::ServiceFront(const ros::NodeHandle& private_nh, const NodeSettings
   services_.push_back(
       private_nh_.advertiseService("step_with_wrenches", &ServiceFront::OnStepWithWrenches, this));
   services_.push_back(
-      private_nh_.advertiseService("set_body_state", &ServiceFront::OnSetBodyState, this));
-  services_.push_back(
       private_nh_.advertiseService("clear_wrenches", &ServiceFront::OnClearWrenches, this));
-  services_.push_back(
-      private_nh_.advertiseService("apply_body_wrench", &ServiceFront::OnApplyBodyWrench, this));
-  services_.push_back(private_nh_.advertiseService("clear_body_wrenches",
-                                                   &ServiceFront::OnClearBodyWrenches, this));
-  services_.push_back(
-      private_nh_.advertiseService("delete_body", &ServiceFront::OnDeleteBody, this));
 }
 
 void ServiceFront::TakeWrenches(const std::vector<ParticleWrench>& entries,

@@ -5,9 +5,10 @@
 // checks of inbound wrenches through WrenchIntake.
 //
 // Threads (simulation_node.h): everything here runs on the stepping thread
-// between two steps, except ~spawn_body and dynamic_reconfigure, which are
-// read on the RequestLane's thread and hand what they change to the stepping
-// thread.
+// between two steps. The requests that carry text of any length (~spawn_body,
+// dynamic_reconfigure and the services that name a body) are read on the
+// RequestLane's thread and hand what they change to the stepping thread, so
+// that no step waits while one is deserialized.
 #pragma once
 
 #include <cstdint>
@@ -63,6 +64,12 @@ class ServiceFront {
   void OnParticleWrench(const ParticleWrench::ConstPtr& msg);
   void OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg);
 
+  // Advertises `service` on the request lane: the request is read there and
+  // served by `serve` on the stepping thread.
+  template <typename Request, typename Response>
+  ros::ServiceServer AdvertiseOnLane(const char* service,
+                                     bool (ServiceFront::*serve)(Request&, Response&));
+
   bool OnReset(std_srvs::Empty::Request& request, std_srvs::Empty::Response& response);
   bool OnSetPaused(std_srvs::SetBool::Request& request, std_srvs::SetBool::Response& response);
   bool OnStep(Step::Request& request, Step::Response& response);
@@ -91,7 +98,7 @@ class ServiceFront {
   std::vector<ros::ServiceServer> services_;
   // Last: their callbacks use everything above, and they stop first.
   RequestLane requests_;
-  ros::ServiceServer spawn_service_;
+  std::vector<ros::ServiceServer> lane_services_;
   RuntimeConfig runtime_config_;
 };
 

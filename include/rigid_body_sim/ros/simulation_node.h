@@ -9,8 +9,8 @@
 // and, while waiting, serves the global callback queue. Callbacks therefore
 // run between steps, never during one, and need no lock; a wrench received
 // before step n acts on step n exactly. The requests that are slow to read
-// (~spawn_body, dynamic_reconfigure) are read and checked on a RequestLane's
-// thread, which hands what they change to the global queue.
+// (~spawn_body, dynamic_reconfigure, the services that name a body) are read
+// on a RequestLane's thread, which hands what they change to the global queue.
 //
 // Stamps: step n reaches the lattice point K0 + n (StepLattice), K0 fixed
 // when stepping starts (with ~start_paused, when the node starts); a cycle is
