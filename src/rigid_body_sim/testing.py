@@ -14,6 +14,7 @@ by body name in scene order.
 import collections
 import struct
 import threading
+import time
 import warnings
 
 import numpy as np
@@ -117,6 +118,19 @@ def _body_wrench_msg(wrench):
     msg.wrench.header.frame_id = wrench.frame
     msg.wrench.wrench = Wrench(force=Vector3(*wrench.force), torque=Vector3(*wrench.torque))
     return msg
+
+
+def wait_until(predicate, timeout, what):
+    """Polls `predicate()` every 10 ms (wall time) until it returns something
+    true, and returns that; AssertionError naming `what` after `timeout` s."""
+    deadline = time.monotonic() + timeout
+    while True:
+        value = predicate()
+        if value:
+            return value
+        if time.monotonic() >= deadline:
+            raise AssertionError('%s within %g s' % (what, timeout))
+        time.sleep(0.01)
 
 
 def _stamp(msg_stamp):

@@ -16,6 +16,7 @@ import unittest
 import rospy
 import rostest
 from rigid_body_sim.srv import Step
+from rigid_body_sim.testing import wait_until
 from rosgraph_msgs.msg import Clock
 from std_srvs.srv import SetBool
 
@@ -54,16 +55,8 @@ class ClockRate(unittest.TestCase):
         with self.lock:
             return len(self.clocks)
 
-    def wait_for(self, predicate, timeout, what):
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if predicate():
-                return
-            time.sleep(0.01)
-        self.fail(what)
-
     def test_1_running_on_the_lattice_and_every_publish_cycle(self):
-        self.wait_for(lambda: self.count() > 0, 30.0, 'no /clock (publish_clock true)')
+        wait_until(lambda: self.count() > 0, 30.0, 'no /clock (publish_clock true)')
         start = self.count()
         time.sleep(2.0)
         clocks = self.received_since(start)
@@ -81,7 +74,7 @@ class ClockRate(unittest.TestCase):
             start = self.count()
             reached = rospy.Time.from_sec(self.step(steps).sim_time).to_nsec()
             k = int(round(reached / float(DT_NS)))
-            self.wait_for(lambda: self.received_since(start)[-1:] == [k * DT_NS], 5.0,
+            wait_until(lambda: self.received_since(start)[-1:] == [k * DT_NS], 5.0,
                           'no /clock %d ns after ~step %d' % (k * DT_NS, steps))
             # ~step publishes the state it reaches only: the publish cycles
             # it passes are no published states.

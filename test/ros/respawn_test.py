@@ -27,6 +27,7 @@ import rospy
 import rostest
 
 from rigid_body_sim.msg import BodyStateArray
+from rigid_body_sim.testing import wait_until
 from tf2_msgs.msg import TFMessage
 
 PKG = 'rigid_body_sim'
@@ -79,19 +80,10 @@ class Respawn(unittest.TestCase):
             return None
         return pid if code == 1 else None
 
-    def wait_for(self, predicate, timeout, what):
-        deadline = time.time() + timeout
-        while time.time() < deadline:
-            value = predicate()
-            if value:
-                return value
-            time.sleep(0.01)
-        self.fail('%s within %.1f s' % (what, timeout))
-
     def test_respawn_after_kill9(self):
-        self.wait_for(lambda: self.snapshot('bodies') and self.snapshot('tf'),
+        wait_until(lambda: self.snapshot('bodies') and self.snapshot('tf'),
                       STARTUP_TIMEOUT, 'no ~bodies and /tf message from the node')
-        pid = self.wait_for(self.node_pid, 10.0, 'no PID from %s' % NODE)
+        pid = wait_until(self.node_pid, 10.0, 'no PID from %s' % NODE)
         gaps = []
         for round_ in range(1, ROUNDS + 1):
             # Settle: the current process publishes, and we are connected to it.
@@ -113,10 +105,10 @@ class Respawn(unittest.TestCase):
 
             got = {}
             for topic in ('bodies', 'tf'):
-                got[topic] = self.wait_for(
+                got[topic] = wait_until(
                     lambda: first_new(topic), MAX_GAP + 5.0,
                     'round %d: no %s message from a new process' % (round_, topic))
-            new_pid = self.wait_for(lambda: (lambda p: p if p and p != pid else None)(
+            new_pid = wait_until(lambda: (lambda p: p if p and p != pid else None)(
                 self.node_pid()), 5.0, 'round %d: no new process registered' % round_)
             self.assertNotEqual(new_pid, pid)
             for topic in ('bodies', 'tf'):

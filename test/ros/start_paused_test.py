@@ -20,6 +20,7 @@ from geometry_msgs.msg import PoseStamped, TwistStamped, WrenchStamped
 from nav_msgs.msg import Odometry
 from rigid_body_sim.msg import BodyStateArray
 from rigid_body_sim.srv import Step
+from rigid_body_sim.testing import wait_until
 from rosgraph_msgs.msg import Clock
 from sensor_msgs.msg import Imu, JointState
 from tf2_msgs.msg import TFMessage
@@ -72,17 +73,9 @@ class StartPaused(unittest.TestCase):
         with self.lock:
             return list(self.messages[topic])
 
-    def wait_for(self, predicate, timeout, what):
-        deadline = time.monotonic() + timeout
-        while time.monotonic() < deadline:
-            if predicate():
-                return
-            time.sleep(0.01)
-        self.fail(what)
-
     def test_1_sends_t0_once_and_waits_there(self):
         for topic in ('clock', 'bodies'):
-            self.wait_for(lambda: self.received(topic), 30.0, 'no %s at t_0' % topic)
+            wait_until(lambda: self.received(topic), 30.0, 'no %s at t_0' % topic)
         time.sleep(QUIET_S)
         StartPaused.t0 = stamp_of('clock', self.received('clock')[0])
         self.assertEqual(self.t0 % DT_NS, 0, 't_0 off the step lattice')
@@ -103,7 +96,7 @@ class StartPaused(unittest.TestCase):
             self.subscribe(topic, name, msg_type)
         sent = ('tf', 'pose', 'twist', 'odom', 'particles', 'joint_states')
         for topic in sent:
-            self.wait_for(lambda: self.received(topic), 10.0,
+            wait_until(lambda: self.received(topic), 10.0,
                           '%s: nothing for a subscriber that connected at t_0' % topic)
         time.sleep(QUIET_S)
         for topic in sent:
@@ -128,7 +121,7 @@ class StartPaused(unittest.TestCase):
         # sim_time is float64 seconds: ns to a few hundred (an ulp at 1.7e9 s).
         self.assertLess(abs(rospy.Time.from_sec(response.sim_time).to_nsec() - t1), 1000)
         for topic in ('clock', 'bodies', 'pose', 'odom', 'imu', 'applied_wrench'):
-            self.wait_for(lambda: self.received(topic) and
+            wait_until(lambda: self.received(topic) and
                           stamp_of(topic, self.received(topic)[-1]) == t1, 5.0,
                           '%s: nothing stamped t_0 + dt after ~step 1' % topic)
         self.assertEqual([stamp_of('clock', m) for m in self.received('clock')], [self.t0, t1])
