@@ -19,6 +19,8 @@
 #include <vector>
 
 #include <rigid_body_sim/ActuatorCommand.h>
+#include <rigid_body_sim/DeleteBody.h>
+#include <rigid_body_sim/SpawnBody.h>
 #include <sensor_msgs/JointState.h>
 
 #include "rbs_fixture.h"
@@ -34,9 +36,9 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 constexpr double kTau = 0.05;                 // s, "lagged"
 constexpr double kTorqueCoefficient = 0.016;  // m, "lagged"
 
-// The round-off of n steps: each step adds the step's impulse to p in a few
-// kicks of the scheme, each rounding once; a few ulps of the result per step.
-double RoundOff(double value, int steps) { return 16.0 * steps * kEps * std::abs(value); }
+// The round-off of n steps: each step adds its impulse to p, a few ulps of
+// the result per step.
+double RoundOff(double value, int steps) { return 4.0 * steps * kEps * std::abs(value); }
 
 // ∫₀ᵗ u (1 − e^(−s/τ)) ds.
 double ImpulseFromRest(double u, double t) { return u * (t + kTau * std::expm1(-t / kTau)); }
@@ -242,6 +244,33 @@ TEST(Thrusters, AUrdfBodysLinksAreItsThrustersSites) {
   EXPECT_NEAR(quad.linear_momentum.z, impulse, RoundOff(impulse, steps));
   EXPECT_NEAR(quad.linear_momentum.x, 0.0, RoundOff(impulse, steps));
   EXPECT_NEAR(quad.linear_momentum.y, 0.0, RoundOff(impulse, steps));
+}
+
+TEST(Thrusters, ASpawnedBodyTakesCommandsOnItsOwnTopic) {
+  Node& node = Fine();
+  ASSERT_TRUE(Ready(node));
+  rigid_body_sim::SpawnBody spawn;
+  spawn.request.body_yaml =
+      "{name: pod, inertial: {mass: 1.0, inertia: {ixx: 0.1, ixy: 0, ixz: 0, iyy: 0.1, iyz: 0, "
+      "izz: 0.1}}, position: [0, -3, 0], sites: [{name: pod_jet}], actuators: [{name: jet, site: "
+      "pod_jet, max_thrust: 2.0}]}";
+  ASSERT_TRUE(ros::service::call(node.sim.Name("spawn_body"), spawn));
+  ASSERT_TRUE(spawn.response.success) << spawn.response.message;
+  ros::NodeHandle nh;
+  ros::Publisher pod =
+      nh.advertise<rigid_body_sim::ActuatorCommand>(node.sim.Name("pod/actuators"), 10);
+  ASSERT_TRUE(WaitFor([&] { return pod.getNumSubscribers() > 0; }, rbs_test::kStartupTimeout));
+  pod.publish(Command({"jet"}, {1.5}));
+  SleepWall(rbs_test::kSettle);
+  rigid_body_sim::BodyStateArray s;
+  ASSERT_TRUE(node.sim.StepAndGet(10, &s));
+  ASSERT_NE(FindBody(s, "pod"), nullptr);
+  const double impulse = 1.5 * 10 * node.dt_s;
+  EXPECT_NEAR(FindBody(s, "pod")->linear_momentum.z, impulse, RoundOff(impulse, 10));
+  rigid_body_sim::DeleteBody remove;
+  remove.request.body = "pod";
+  ASSERT_TRUE(ros::service::call(node.sim.Name("delete_body"), remove));
+  EXPECT_TRUE(remove.response.success) << remove.response.message;
 }
 
 TEST(Thrusters, FaultyCommandsAreRejectedNamedAndCounted) {
