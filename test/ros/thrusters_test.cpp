@@ -9,7 +9,8 @@
 //   p_z = u (t + tau expm1(-t/tau)),  L_z = 0.016 p_z,  T = -u expm1(-t/tau),
 // which the node's exact lag meets at any step to round-off. "quad" is
 // config/quadrotor.urdf with a rotor at each rotor link, the couples of
-// alternating signs; "plain" has no actuators.
+// alternating signs; "plain" has no actuators. Also: the thrust in
+// applied_wrench, a body spawned with actuators, and the rejections.
 #include <cmath>
 #include <limits>
 #include <map>
@@ -18,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include <geometry_msgs/WrenchStamped.h>
 #include <rigid_body_sim/ActuatorCommand.h>
 #include <rigid_body_sim/DeleteBody.h>
 #include <rigid_body_sim/SpawnBody.h>
@@ -228,6 +230,39 @@ TEST(Thrusters, ResetAndClearWrenchesZeroCommandsAndThrusts) {
   const auto after_clear = node.StatesAt(sim_time);
   ASSERT_TRUE(after_clear.has_value());
   EXPECT_EQ(after_clear->effort, (std::vector<double>{0.0, 0.0}));
+}
+
+TEST(Thrusters, TheThrustIsPartOfTheAppliedWrench) {
+  Node& node = Fine();
+  ASSERT_TRUE(Ready(node));
+  std::mutex mutex;
+  std::vector<geometry_msgs::WrenchStamped> received;
+  ros::NodeHandle nh;
+  const ros::Subscriber applied = nh.subscribe<geometry_msgs::WrenchStamped>(
+      node.sim.Name("craft/applied_wrench"), 100,
+      [&](const geometry_msgs::WrenchStamped::ConstPtr& msg) {
+        std::lock_guard<std::mutex> lock(mutex);
+        received.push_back(*msg);
+      });
+  ASSERT_TRUE(WaitFor([&] { return applied.getNumPublishers() > 0; }, rbs_test::kStartupTimeout));
+  SleepWall(rbs_test::kSettle);  // the node counts the subscriber before the step
+  node.Publish("craft", Command({"instant"}, {4.0}));
+  double sim_time = 0.0;
+  rigid_body_sim::BodyStateArray s;
+  ASSERT_TRUE(node.sim.StepAndGet(3, &s, &sim_time));
+  std::optional<geometry_msgs::WrenchStamped> wrench;
+  WaitFor(
+      [&] {
+        std::lock_guard<std::mutex> lock(mutex);
+        for (const auto& msg : received) {
+          if (std::fabs(msg.header.stamp.toSec() - sim_time) < rbs_test::kStampMatch) wrench = msg;
+        }
+        return wrench.has_value();
+      },
+      rbs_test::kMessageTimeout);
+  ASSERT_TRUE(wrench.has_value()) << "no applied_wrench stamped " << sim_time;
+  EXPECT_VEC3_NEAR(wrench->wrench.force, 0.0, 0.0, 4.0, 0.0);
+  EXPECT_VEC3_NEAR(wrench->wrench.torque, 0.0, 0.0, 0.0, 0.0);
 }
 
 TEST(Thrusters, AUrdfBodysLinksAreItsThrustersSites) {
