@@ -138,6 +138,7 @@ void ServiceFront::TakeActuatorCommand(const ActuatorCommand& msg) {
     intake_.Reject("actuator command", checked.rejection, checked.detail);
     return;
   }
+  if (checked.actuators.empty()) return;  // it commands nothing
   editor_.HoldActuatorCommands(*world_.FindBody(msg.body), checked.actuators, msg.commands,
                                StartTimeOf(msg.header.stamp, loop_.start_stamp(), world_.time()));
 }

@@ -1,11 +1,12 @@
 // Each body's own topics (doc/node.md, "Topics and services"): the
 // publishers (a URDF body with a namespace has its own joint_states, a body
-// with actuators its actuator_states) and the wrench subscription (and a
-// body with actuators its actuators subscription) in its topic namespace (~<body> unless the body
-// names one), advertised and shut down on a thread of their own. Each is a call to the master of a
-// few milliseconds, so 10,000 bodies' topics would hold the first step back by minutes, and a spawn
-// or delete would make steps late: the stepping thread only queues the work and uses a body's
-// topics once they exist.
+// with actuators its actuator_states) and the subscriptions (wrench, and
+// actuators for a body with actuators) in its topic namespace (~<body>
+// unless the body names one), advertised and shut down on a thread of their
+// own. Each is a call to the master of a few milliseconds, so 10,000 bodies'
+// topics would hold the first step back by minutes, and a spawn or delete
+// would make steps late: the stepping thread only queues the work and uses a
+// body's topics once they exist.
 #pragma once
 
 #include <atomic>
