@@ -40,6 +40,34 @@ std::string PropertiesError(const BodyProperties& properties) {
   return error;
 }
 
+// Why thruster `def` cannot act on a body with `sites`, or "": the error
+// names the key as the scene does.
+std::string ThrusterError(const ThrusterDef& def, const std::vector<Site>& sites) {
+  if (def.name.empty()) return "name must not be empty";
+  if (std::none_of(sites.begin(), sites.end(),
+                   [&def](const Site& site) { return site.name == def.site; })) {
+    return "site '" + def.site + "' is not a site of the body";
+  }
+  const auto finite = [](const char* key, double value) -> std::string {
+    if (std::isfinite(value)) return "";
+    return std::string(key) + " must be a finite number, got " + FormatNumber(value);
+  };
+  for (const std::string& error :
+       {finite("max_thrust", def.max_thrust_n), finite("min_thrust", def.min_thrust_n),
+        finite("torque_coefficient", def.torque_coefficient_m)}) {
+    if (!error.empty()) return error;
+  }
+  if (!(def.min_thrust_n <= def.max_thrust_n)) {
+    return "min_thrust (" + FormatNumber(def.min_thrust_n) + ") must be <= max_thrust (" +
+           FormatNumber(def.max_thrust_n) + ")";
+  }
+  if (!std::isfinite(def.time_constant_s) || def.time_constant_s < 0.0) {
+    return "time_constant must be a finite number >= 0 [s], got " +
+           FormatNumber(def.time_constant_s);
+  }
+  return "";
+}
+
 }  // namespace
 
 void CheckIntegratorName(const std::string& name) {
@@ -111,6 +139,17 @@ void CheckBodyDef(const BodyDef& def, std::size_t index, const WorldDef& world,
     if (const std::optional<NameTaker> owner = taker(sites[k].name)) {
       RBS_CHECK(owner->index == index,
                 site + ": name '" + sites[k].name + "' duplicates " + TakerName(*owner));
+    }
+  }
+  const std::vector<ThrusterDef>& thrusters = def.actuators;
+  for (std::size_t k = 0; k < thrusters.size(); ++k) {
+    const std::string thruster = Entry(index, name) + ": actuators[" + std::to_string(k) +
+                                 "] (name '" + thrusters[k].name + "')";
+    const std::string error = ThrusterError(thrusters[k], sites);
+    RBS_CHECK(error.empty(), thruster + ": " + error);
+    for (std::size_t j = 0; j < k; ++j) {
+      RBS_CHECK(thrusters[j].name != thrusters[k].name,
+                thruster + ": name duplicates actuators[" + std::to_string(j) + "]");
     }
   }
   const std::string properties_error = PropertiesError(def.properties);

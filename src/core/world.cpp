@@ -24,9 +24,12 @@ World::World(const WorldDef& def, std::vector<BodyDef> bodies)
   has_gravity_ = !options_.gravity.isZero(0.0);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
     CheckBody(i, bodies[i]);
+    std::vector<ThrusterDef> thrusters = std::move(bodies[i].actuators);
     const BodyId id = bodies_.Add(std::move(bodies[i]));
     PrepareBody(i);
     wrenches_.AddBody(id, bodies_.hot().models[i].particle_count());
+    actuators_.AddBody(id, bodies_.hot().models[i], bodies_.cold().frames[i], std::move(thrusters),
+                       options_.dt_s);
   }
   engine_ = std::make_unique<StepEngine>(options_.threads);
 }
@@ -60,10 +63,13 @@ void World::PrepareBody(std::size_t index) {
 BodyId World::AddBody(BodyDef def) {
   const std::size_t index = size();
   CheckBody(index, def);
+  std::vector<ThrusterDef> thrusters = std::move(def.actuators);
   const BodyId id = bodies_.Add(std::move(def));
   PrepareBody(index);
   // Sums again, with gravity on the new body.
   wrenches_.AddBody(id, bodies_.hot().models[index].particle_count());
+  actuators_.AddBody(id, bodies_.hot().models[index], bodies_.cold().frames[index],
+                     std::move(thrusters), options_.dt_s);
   for (BodyListener* listener : listeners_) listener->OnBodyAdded(*this, id);
   return id;
 }
@@ -74,6 +80,7 @@ void World::RemoveBody(BodyId id) {
   bodies_.Remove(id);
   engine_->OnBodyRemoved(index);
   wrenches_.RemoveBody(id);  // sums again: the loads moved with their bodies
+  actuators_.RemoveBody(id);
   for (BodyListener* listener : listeners_) listener->OnBodyRemoved(*this, id);
 }
 
@@ -90,9 +97,13 @@ std::uint32_t World::SubstepsFor(std::size_t index, const BodyState& state) cons
 
 void World::Step() {
   BodyHotColumns& hot = bodies_.hot();
-  const bool loads_changed =
-      wrenches_.Reduce(time(), options_.wrench_timeout_s, kTimeToleranceInSteps * options_.dt_s,
-                       bodies_, &hot.loads, &hot.loaded);
+  const double tolerance_s = kTimeToleranceInSteps * options_.dt_s;
+  // A thrust that changes over the step changes the loads it is summed into.
+  if (!actuators_.empty() && actuators_.StartStep(time(), options_.wrench_timeout_s, tolerance_s)) {
+    wrenches_.MarkLoadsStale();
+  }
+  const bool loads_changed = wrenches_.Reduce(time(), options_.wrench_timeout_s, tolerance_s,
+                                              bodies_, &hot.loads, &hot.loaded);
   if (loads_changed) {
     const std::vector<BodyProperties>& properties = bodies_.cold().properties;
     for (std::size_t i = 0; i < size(); ++i) {
@@ -103,6 +114,7 @@ void World::Step() {
       }
       if (properties[i].has_damping()) hot.loaded[i] = 1;
     }
+    actuators_.AddLoads(bodies_, &hot.loads, &hot.loaded);
   }
   last_step_recorded_ = record_next_step_;
   record_next_step_ = false;
@@ -121,6 +133,7 @@ void World::Reset() {
   hot.states = cold.initial_states;
   engine_->OnStatesWritten();
   wrenches_.Clear();
+  actuators_.Clear();
   hot.faults.assign(size(), BodyFault::kNone);
   frozen_count_ = 0;
   cold.step_record_valid.assign(cold.step_record_valid.size(), 0);

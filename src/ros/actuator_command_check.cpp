@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 namespace rigid_body_sim {
@@ -9,7 +10,7 @@ namespace rigid_body_sim {
 CheckedActuatorCommand CheckActuatorCommand(const ActuatorCommand& msg, const WrenchFrames& frames,
                                             const std::vector<std::string>& actuator_names) {
   const auto reject = [](WrenchMsgRejection reason, std::string detail) {
-    return CheckedActuatorCommand{reason, std::move(detail)};
+    return CheckedActuatorCommand{reason, std::move(detail), {}};
   };
   if (!frames.world->FindBody(msg.body)) {
     return reject(frames.other_shard_bodies.count(msg.body) > 0 ? WrenchMsgRejection::kOtherShard
@@ -31,13 +32,29 @@ CheckedActuatorCommand CheckActuatorCommand(const ActuatorCommand& msg, const Wr
                     "NaN or infinite command " + std::to_string(i) + of_body);
     }
   }
+  CheckedActuatorCommand checked;
   for (const std::string& name : msg.names) {
-    if (std::find(actuator_names.begin(), actuator_names.end(), name) == actuator_names.end()) {
+    const auto found = std::find(actuator_names.begin(), actuator_names.end(), name);
+    if (found == actuator_names.end()) {
       return reject(WrenchMsgRejection::kUnknownActuator,
                     "body " + QuotedName(msg.body) + " has no actuator " + QuotedName(name));
     }
+    checked.actuators.push_back(static_cast<std::size_t>(found - actuator_names.begin()));
   }
-  return {};
+  if (msg.names.empty()) {
+    for (std::size_t i = 0; i < actuator_names.size(); ++i) checked.actuators.push_back(i);
+  }
+  return checked;
+}
+
+std::vector<std::string> ActuatorNames(const WrenchFrames& frames, const std::string& body) {
+  std::vector<std::string> names;
+  const std::optional<core::BodyId> id = frames.world->FindBody(body);
+  if (!id) return names;
+  if (const std::vector<core::ThrusterDef>* thrusters = frames.world->actuators().thrusters(*id)) {
+    for (const core::ThrusterDef& thruster : *thrusters) names.push_back(thruster.name);
+  }
+  return names;
 }
 
 }  // namespace rigid_body_sim

@@ -101,4 +101,14 @@ geometry_msgs::WrenchStamped ToAppliedWrenchMsg(const core::BodyModel& model,
   return msg;
 }
 
+sensor_msgs::JointState ToActuatorStatesMsg(const std::vector<std::string>& names,
+                                            const std::vector<double>& thrusts_n,
+                                            const ros::Time& stamp) {
+  sensor_msgs::JointState msg;
+  msg.header.stamp = stamp;
+  msg.name = names;
+  msg.effort = thrusts_n;
+  return msg;
+}
+
 }  // namespace rigid_body_sim

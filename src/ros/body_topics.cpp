@@ -41,8 +41,12 @@ void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic,
 
 }  // namespace
 
-BodyTopics::BodyTopics(bool enabled, WrenchCallback on_wrench, ConnectCallback on_connect)
-    : enabled_(enabled), on_wrench_(std::move(on_wrench)), on_connect_(std::move(on_connect)) {
+BodyTopics::BodyTopics(bool enabled, WrenchCallback on_wrench, ActuatorCallback on_actuators,
+                       ConnectCallback on_connect)
+    : enabled_(enabled),
+      on_wrench_(std::move(on_wrench)),
+      on_actuators_(std::move(on_actuators)),
+      on_connect_(std::move(on_connect)) {
   if (enabled_) worker_ = std::thread(&BodyTopics::Work, this);
 }
 
@@ -56,12 +60,14 @@ BodyTopics::~BodyTopics() {
 }
 
 void BodyTopics::Add(core::BodyId id, const std::string& body, const std::string& topic_namespace,
-                     std::optional<std::vector<std::string>> joint_names) {
+                     std::optional<std::vector<std::string>> joint_names,
+                     std::vector<std::string> actuator_names) {
   auto topics = std::make_shared<Topics>();
   topics->id = id;
   topics->body = body;
   topics->topic_namespace = topic_namespace;
   topics->joint_names = std::move(joint_names);
+  topics->actuator_names = std::move(actuator_names);
   bodies_.Insert(id, topics);
   ++body_count_;
   if (enabled_) Push({std::move(topics), true});
@@ -106,7 +112,9 @@ void BodyTopics::Work() {
       task.topics->imu.publisher.shutdown();
       task.topics->applied_wrench.publisher.shutdown();
       task.topics->joint_states.publisher.shutdown();
+      task.topics->actuator_states.publisher.shutdown();
       task.topics->wrench.shutdown();
+      task.topics->actuators.shutdown();
       advertised_.fetch_sub(1, std::memory_order_relaxed);
     }
   }
@@ -143,6 +151,16 @@ void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
         on_wrench(body, *msg);
       },
       ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  if (!topics->actuator_names.empty()) {
+    AdvertiseCounted<sensor_msgs::JointState>(nh, "actuator_states", topics,
+                                              Output::kActuatorStates, &topics->actuator_states,
+                                              on_connect_);
+    const ActuatorCallback& on_actuators = on_actuators_;
+    topics->actuators = nh.subscribe<ActuatorCommand>(
+        "actuators", kWrenchQueueSize,
+        [&on_actuators, body](const ActuatorCommand::ConstPtr& msg) { on_actuators(body, *msg); },
+        ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
+  }
   topics->advertised.store(true, std::memory_order_release);
   advertised_.fetch_add(1, std::memory_order_relaxed);
 }

@@ -14,6 +14,7 @@
 #include "rigid_body_sim/core/shapes.h"
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
+#include "rigid_body_sim/ros/scene_actuators.h"
 #include "rigid_body_sim/ros/scene_error.h"
 #include "rigid_body_sim/ros/scene_frames.h"
 #include "rigid_body_sim/ros/scene_inertial.h"
@@ -104,7 +105,7 @@ void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) 
   static const std::set<std::string> kCommonKeys = {
       "name",          "position",       "orientation",     "linear_velocity", "angular_velocity",
       "gravity_scale", "linear_damping", "angular_damping", "frame",           "sites",
-      "namespace"};
+      "namespace",     "actuators"};
   for (const auto& member : body) {
     if (kCommonKeys.count(member.first) || kind_keys.count(member.first)) continue;
     std::string known;
@@ -212,12 +213,17 @@ SceneBody ReadBody(const XmlRpcValue& body, const std::string& name,
   const Eigen::Vector3d linear_velocity = ReadOptionalVector3(body, "linear_velocity");
   const Eigen::Vector3d angular_velocity = ReadOptionalVector3(body, "angular_velocity");
   const core::BodyProperties properties = ReadProperties(body);
+  std::vector<core::ThrusterDef> actuators;
+  if (body.hasMember("actuators")) actuators = ReadActuators(body["actuators"]);
 
   // Unique names and a state the world's step can take are the World's to check.
   const core::BodyState initial_state = core::StateAtFrameOrigin(
       *model, frames.origin, position, orientation, linear_velocity, angular_velocity);
-  return SceneBody{core::BodyDef{std::move(*model), initial_state, properties, std::move(frames)},
-                   std::move(graph)};
+  SceneBody scene_body{
+      core::BodyDef{std::move(*model), initial_state, properties, std::move(frames)},
+      std::move(graph)};
+  scene_body.def.actuators = std::move(actuators);
+  return scene_body;
 }
 
 }  // namespace

@@ -122,15 +122,34 @@ void ServiceFront::TakeLockstepAnswer(const LockstepAnswer& answer) {
   for (std::size_t i = 0; i < body_wrenches; ++i) {
     OnBodyWrench(answer.body_wrenches[i].body, answer.body_wrenches[i].wrench);
   }
-  // No body of this node has actuators: an entry naming one is rejected, and
-  // one that commands none changes nothing.
-  const std::vector<std::string> no_actuators;
   const std::size_t actuators = intake_.EntriesTaken(answer.actuators.size());
-  for (std::size_t i = 0; i < actuators; ++i) {
-    const CheckedActuatorCommand checked =
-        CheckActuatorCommand(answer.actuators[i], intake_.frames(), no_actuators);
-    if (!checked.accepted()) intake_.Reject("actuator command", checked.rejection, checked.detail);
+  for (std::size_t i = 0; i < actuators; ++i) TakeActuatorCommand(answer.actuators[i]);
+}
+
+void ServiceFront::OnActuatorCommand(const std::string& body, const ActuatorCommand& msg) {
+  if (msg.body.empty()) {
+    ActuatorCommand named = msg;
+    named.body = body;
+    TakeActuatorCommand(named);
+  } else if (msg.body == body) {
+    TakeActuatorCommand(msg);
+  } else {
+    intake_.Reject("actuator command", WrenchMsgRejection::kUnknownBody,
+                   "a command for body " + QuotedName(msg.body) + " on the actuators topic of " +
+                       QuotedName(body));
   }
+}
+
+void ServiceFront::TakeActuatorCommand(const ActuatorCommand& msg) {
+  const CheckedActuatorCommand checked =
+      CheckActuatorCommand(msg, intake_.frames(), ActuatorNames(intake_.frames(), msg.body));
+  if (!checked.accepted()) {
+    intake_.Reject("actuator command", checked.rejection, checked.detail);
+    return;
+  }
+  if (checked.actuators.empty()) return;  // it commands nothing
+  editor_.HoldActuatorCommands(*world_.FindBody(msg.body), checked.actuators, msg.commands,
+                               StartTimeOf(msg.header.stamp, loop_.start_stamp(), world_.time()));
 }
 
 bool ServiceFront::OnReset(std_srvs::Empty::Request&, std_srvs::Empty::Response& response) {

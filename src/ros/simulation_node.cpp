@@ -42,10 +42,14 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix,
                                std::move(scene.other_shard_bodies), settings_.shard.count)),
       clock_(settings_, held_start_),
-      publisher_(private_nh, settings_, world_, graph_, held_start_,
-                 [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
-                   front_.OnBodyWrench(body, msg);
-                 }),
+      publisher_(
+          private_nh, settings_, world_, graph_, held_start_,
+          [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
+            front_.OnBodyWrench(body, msg);
+          },
+          [this](const std::string& body, const ActuatorCommand& msg) {
+            front_.OnActuatorCommand(body, msg);
+          }),
       static_frames_(settings_.tf_prefix, world_, graph_),
       diagnostics_(private_nh, settings_, world_),
       editor_(&world_, &graph_,

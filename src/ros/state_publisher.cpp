@@ -70,7 +70,8 @@ void StatePublisher::Advertise(ros::NodeHandle& nh, const std::string& topic,
 StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings,
                                const core::World& world, const BodyGraphTable& graph,
                                const HeldStart& held_start,
-                               BodyTopics::WrenchCallback on_body_wrench)
+                               BodyTopics::WrenchCallback on_body_wrench,
+                               BodyTopics::ActuatorCallback on_actuator_command)
     : world_frame_(settings.world_frame),
       publish_tf_(settings.publish_tf),
       particle_marker_diameter_m_(settings.particle_marker_diameter_m),
@@ -79,6 +80,7 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
       graph_(graph),
       held_start_(held_start),
       body_topics_(settings.per_body_topics, std::move(on_body_wrench),
+                   std::move(on_actuator_command),
                    [this](core::BodyId id, BodyTopics::Output output,
                           const ros::SingleSubscriberPublisher& subscriber) {
                      SendHeldBodyOutput(id, output, subscriber);
@@ -107,8 +109,13 @@ void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
   per_body_.Insert(id, {{BodyFrameId(tf_prefix_, graph_.TfFrame(name)), world.frames(id).origin},
                         next_marker_id_++});
   const BodyGraphNames& names = graph_.at(name);
+  std::vector<std::string> actuator_names;
+  if (const std::vector<core::ThrusterDef>* thrusters = world.actuators().thrusters(id)) {
+    for (const core::ThrusterDef& thruster : *thrusters) actuator_names.push_back(thruster.name);
+  }
   body_topics_.Add(id, name, graph_.TopicNamespace(name),
-                   names.own_joint_states ? std::make_optional(names.held_joints) : std::nullopt);
+                   names.own_joint_states ? std::make_optional(names.held_joints) : std::nullopt,
+                   std::move(actuator_names));
   joint_states_.OnBodyAdded(id, names.held_joints);
 }
 
@@ -164,6 +171,10 @@ void StatePublisher::PublishBodyTopics(const core::World& world, const ros::Time
     if (topics->joint_states.wanted()) {
       topics->joint_states.publisher.publish(HeldJointStatesMsg(*topics->joint_names, stamp));
     }
+    if (topics->actuator_states.wanted()) {
+      topics->actuator_states.publisher.publish(
+          ToActuatorStatesMsg(topics->actuator_names, world.actuators().thrusts(id), stamp));
+    }
     const core::StepRecord* record = world.last_step_record(body);
     if (record == nullptr) continue;  // no step since start, reset, spawn or set state
     if (topics->imu.wanted()) {
@@ -207,6 +218,14 @@ void StatePublisher::SendHeldBodyOutput(core::BodyId id, BodyTopics::Output outp
       const BodyTopics::Topics* topics = body_topics_.at(id);
       if (topics != nullptr && topics->joint_names) {
         subscriber.publish(HeldJointStatesMsg(*topics->joint_names, stamp));
+      }
+      return;
+    }
+    case BodyTopics::Output::kActuatorStates: {
+      const BodyTopics::Topics* topics = body_topics_.at(id);
+      if (topics != nullptr) {
+        subscriber.publish(
+            ToActuatorStatesMsg(topics->actuator_names, world.actuators().thrusts(id), stamp));
       }
       return;
     }

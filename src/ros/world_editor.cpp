@@ -18,6 +18,14 @@ void WorldEditor::HoldBodyWrench(const core::BodyWrench& wrench) {
   Notify(WorldEvent::Kind::kWrenchHeld, wrench.body);
 }
 
+void WorldEditor::HoldActuatorCommands(core::BodyId body, const std::vector<std::size_t>& actuators,
+                                       const std::vector<double>& commands_n, double start_s) {
+  for (std::size_t i = 0; i < actuators.size(); ++i) {
+    world_.HoldActuatorCommand(body, actuators[i], commands_n[i], start_s);
+  }
+  Notify(WorldEvent::Kind::kWrenchHeld, body);
+}
+
 core::JobRefusal WorldEditor::AddWrenchJob(const core::WrenchJob& job) {
   const core::JobRefusal refusal = world_.AddWrenchJob(job);
   if (refusal == core::JobRefusal::kNone) Notify(WorldEvent::Kind::kWrenchHeld, job.body);

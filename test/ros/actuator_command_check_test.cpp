@@ -1,5 +1,6 @@
 // An actuator command's checks, without a master: each rejection by reason
-// and named, in the order body, length, finite, names.
+// and named, in the order body, length, finite, names; an accepted one's
+// actuators by index.
 #include <limits>
 
 #include <gtest/gtest.h>
@@ -24,8 +25,14 @@ ActuatorCommand Command(const std::string& body, std::vector<std::string> names,
 
 TEST(ActuatorCommandCheck, TakesNamesTheBodyHasOrEveryActuatorInOrder) {
   const WrenchFrames frames = test::BoxAndRodFrames();
-  EXPECT_TRUE(CheckActuatorCommand(Command("box", {"rotor_1"}, {2.0}), frames, kRotors).accepted());
-  EXPECT_TRUE(CheckActuatorCommand(Command("box", {}, {1.0, 2.0}), frames, kRotors).accepted());
+  const CheckedActuatorCommand one =
+      CheckActuatorCommand(Command("box", {"rotor_1"}, {2.0}), frames, kRotors);
+  EXPECT_TRUE(one.accepted());
+  EXPECT_EQ(one.actuators, (std::vector<std::size_t>{1}));
+  const CheckedActuatorCommand every =
+      CheckActuatorCommand(Command("box", {}, {1.0, 2.0}), frames, kRotors);
+  EXPECT_TRUE(every.accepted());
+  EXPECT_EQ(every.actuators, (std::vector<std::size_t>{0, 1}));
   // A body without actuators accepts only the entry that commands none.
   EXPECT_TRUE(CheckActuatorCommand(Command("box", {}, {}), frames, {}).accepted());
 }

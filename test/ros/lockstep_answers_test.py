@@ -10,10 +10,11 @@ the one listed controller of two nodes on one scene (lockstep_answers.test):
   wrench for an unknown body, are rejected on their own, named and counted
   (rejected_unknown_actuator, rejected_unknown_body), and the rest of the
   answer still holds;
-- a PD controller answering every cycle with body wrenches only (world
-  force, couple in the body's axes), run on a quiet machine and again with
-  every core kept busy, gives bit-identical states at every cycle (equal
-  state hashes), with no lockstep timeout."""
+- a PD controller answering every cycle with body wrenches (world force,
+  couple in the body's axes) and a command for the puck's lagged thruster,
+  run on a quiet machine and again with every core kept busy, gives
+  bit-identical states at every cycle (equal state hashes), with no
+  lockstep timeout."""
 import os
 import subprocess
 import sys
@@ -27,6 +28,7 @@ import rostest
 from geometry_msgs.msg import Vector3, Wrench
 from rigid_body_sim.msg import ActuatorCommand, BodyStateArray, BodyWrench, LockstepAnswer
 from rigid_body_sim.testing import SimClient, state_hash, to_states
+from sensor_msgs.msg import JointState
 
 CYCLES = 150                                # 1.5 s of simulation at publish_rate 100 Hz
 CYCLE_STEPS = 10                            # rate 1000 Hz
@@ -35,6 +37,7 @@ FIRST_FORCE = np.array([1.0, 2.0, 3.0])     # N, world axes, cycle 0
 FIRST_COUPLE = np.array([0.0, 0.0, 0.1])    # N m, world axes, cycle 0
 TARGET = np.array([0.0, 0.0, 1.0])          # m
 KP, KD, KW = 32.0, 16.0, 0.05               # N/m, N s/m, N m s/rad: critically damped at 2 kg
+JET_N = 0.3                                 # N, the amplitude of the puck's thruster command
 
 
 def body_wrench(body, force, torque, frame=''):
@@ -66,6 +69,12 @@ class Run(object):
                                            tcp_nodelay=True)
         self.bodies = rospy.Subscriber(node + '/bodies', BodyStateArray, self.on_bodies,
                                        queue_size=10, tcp_nodelay=True)
+        self.jet_thrust_max = 0.0  # N, the largest |T| on the puck's actuator_states
+        self.jet = rospy.Subscriber(node + '/puck/actuator_states', JointState, self.on_jet,
+                                    queue_size=1000)
+
+    def on_jet(self, msg):
+        self.jet_thrust_max = max(self.jet_thrust_max, abs(msg.effort[0]))
 
     def on_bodies(self, msg):
         if self.done.is_set():
@@ -84,6 +93,8 @@ class Run(object):
             force = -KP * (puck.position - TARGET) - KD * puck.linear_velocity
             rate_body = rotation_matrix(puck.orientation).T.dot(puck.angular_velocity)
             answer.body_wrenches = [body_wrench('puck', force, -KW * rate_body, frame='puck')]
+            answer.actuators = [ActuatorCommand(body='puck', names=['jet'],
+                                                commands=[float(JET_N * np.sin(0.1 * len(self.cycles)))])]
         if len(self.cycles) > CYCLES:
             self.done.set()
         self.answers.publish(answer)
@@ -94,6 +105,7 @@ class Run(object):
         diagnostics = SimClient(self.node).diagnostics()
         self.bodies.unregister()
         self.answers.unregister()
+        self.jet.unregister()
         return diagnostics
 
 
@@ -106,6 +118,8 @@ class LockstepAnswers(unittest.TestCase):
         self.assertEqual(diagnostics['rejected_unknown_actuator'], '1', node)
         self.assertEqual(diagnostics['rejected_unknown_body'], '1', node)
         self.assertEqual(diagnostics['rejected_messages'], '2', node)
+        # The thruster commands were held and the thrust followed them.
+        self.assertGreater(run.jet_thrust_max, 0.5 * JET_N, node)
         return run.cycles
 
     def check_first_cycle(self, cycles):

@@ -37,8 +37,12 @@ For each command run against the node:
 - `rosservice call`: when the service's response has a `success` field, the
   output says `success: True`;
 - effects, checked on `~bodies` (read with rospy all along):
-  * `rostopic pub` of a ParticleWrench / ParticleWrenchArray, or a
-    WrenchStamped on `~<body>/wrench`: every body the message pushes with a
+  * `rostopic pub` of a ParticleWrench / ParticleWrenchArray, a
+    WrenchStamped on `~<body>/wrench`, or an ActuatorCommand on
+    `~<body>/actuators` of a body spawned earlier from `inertial` with
+    `sites` and `actuators` (each thrust T, clipped, along its site's z at
+    the site, with the couple torque_coefficient * T, held once ten time
+    constants have passed): every body the message pushes with a
     non-zero wrench changed its momentum or angular momentum, and, for every
     body, dp/dt and dL/dt measured between two consecutive `~bodies` messages
     equal the force and torque of the wrenches held (a model of them kept by
@@ -512,6 +516,8 @@ class ReadmeExamples(unittest.TestCase):
             body = topic.rstrip('/').split('/')[-2]
             self.assertIn(body, names, '%s: unknown body %r in the example' % (where, body))
             return self.hold(where, body, 'com', data, (0.0, 0.0, 0.0))
+        if topic.endswith('/actuators') and msg_type.endswith('ActuatorCommand'):
+            return self.hold_thrusts(where, topic.rstrip('/').split('/')[-2], data)
         if topic.endswith('/particle_wrench') and msg_type.endswith('ParticleWrench'):
             entries = [data]
         elif topic.endswith('/particle_wrenches') and msg_type.endswith('ParticleWrenchArray'):
@@ -531,6 +537,47 @@ class ReadmeExamples(unittest.TestCase):
                             '%s: particle %d out of range for %s' % (where, particle, body))
             pushed |= self.hold(where, body, particle, e, self.offsets[body][particle])
         return pushed
+
+    def hold_thrusts(self, where, body, command):
+        """Holds each commanded thrust of an ActuatorCommand in the model, once
+        its lag has settled; {body} if one pushes."""
+        self.assertIn(body, self.thrusters, '%s: %s was not spawned with actuators in the '
+                      'documents before' % (where, body))
+        thrusters = self.thrusters[body]
+        names = command.get('names') or list(thrusters)
+        pushed = set()
+        settle = 0.0
+        for name, u in zip(names, command.get('commands') or []):
+            offset, axis, coefficient, low, high, tau = thrusters[name]
+            thrust = min(max(float(u), low), high)
+            self.held[(body, 'actuator ' + name)] = (True, scale(thrust, axis),
+                                                    scale(coefficient * thrust, axis), offset)
+            pushed |= {body} if thrust != 0.0 else set()
+            settle = max(settle, 10.0 * tau)
+        time.sleep(settle)   # at real-time factor 1: T is u to 5e-5 after ten time constants
+        return pushed
+
+    def remember_thrusters(self, where, entry):
+        """The thrusters of a spawned `inertial` entry: name -> (site from the
+        COM, site z, torque coefficient, min, max, time constant), body axes."""
+        if not entry.get('actuators'):
+            return
+        self.assertIn('inertial', entry, '%s: the model knows the COM of inertial '
+                      'entries only' % where)
+        origin = entry['inertial'].get('origin') or {}
+        com = tuple(float(x) for x in origin.get('xyz', [0.0, 0.0, 0.0]))
+        sites = {}
+        for site in entry.get('sites', []):
+            q = site.get('orientation', [0.0, 0.0, 0.0, 1.0])
+            orientation = type('Q', (), dict(zip('xyzw', (float(x) for x in q))))
+            sites[site['name']] = (sub(tuple(float(x) for x in site.get('position', [0.0] * 3)),
+                                       com), mul(rot(orientation), (0.0, 0.0, 1.0)))
+        self.thrusters[entry['name']] = {
+            a['name']: sites[a['site']] + (float(a.get('torque_coefficient', 0.0)),
+                                            float(a.get('min_thrust', 0.0)),
+                                            float(a['max_thrust']),
+                                            float(a.get('time_constant', 0.0)))
+            for a in entry['actuators']}
 
     def hold(self, where, body, key, message, offset):
         """Holds the wrench of a ParticleWrench entry or a WrenchStamped in the
@@ -641,6 +688,7 @@ class ReadmeExamples(unittest.TestCase):
         self.offsets = self.reference_offsets()
         initial = self.last()
         self.held = {}
+        self.thrusters = {}   # body -> its thrusters, from the spawns of the documents
         self.jobs = 0
         paused = False
         last_before_pause = None
@@ -688,7 +736,9 @@ class ReadmeExamples(unittest.TestCase):
                 elif name == 'apply_body_wrench':
                     self.apply_job(where, request, paused)
                 elif name == 'spawn_body':
-                    spawned = yaml.safe_load(request['body_yaml'])['name']
+                    entry = yaml.safe_load(request['body_yaml'])
+                    self.remember_thrusters(where, entry)
+                    spawned = entry['name']
                     msgs = self.wait_new(self.count(), 1, 5.0, where)
                     self.assertIn(spawned, [b.name for b in msgs[-1].bodies],
                                   '%s: %s not in ~bodies after the spawn' % (where, spawned))

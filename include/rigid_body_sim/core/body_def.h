@@ -5,11 +5,13 @@
 #pragma once
 
 #include <utility>
+#include <vector>
 
 #include "rigid_body_sim/core/body_frames.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_properties.h"
 #include "rigid_body_sim/core/body_state.h"
+#include "rigid_body_sim/core/thruster.h"
 
 namespace rigid_body_sim::core {
 
@@ -28,6 +30,9 @@ struct BodyDef {
   BodyState initial_state;
   BodyProperties properties;  // the default: full gravity, no damping
   BodyFrames frames;          // the default: the COM frame, no sites
+  // Thrusters at the body's sites, in the order commands name them; the
+  // default: none.
+  std::vector<ThrusterDef> actuators;
 };
 
 }  // namespace rigid_body_sim::core

@@ -60,10 +60,12 @@ using NameLookup = std::function<std::optional<NameTaker>(const std::string& nam
 // world.integrator), in this order: a name; one that no body or site before
 // it has (`taken`: who has a name; a site may share its own body's name);
 // sites with names, unique among the body's own sites and free in `taken`;
-// properties that CheckBodyProperties accepts; an initial state that
-// CheckState accepts and that a step of the world takes within
-// world.max_substeps (a new body holds no wrench), else "initial state is
-// spin_aliased".
+// actuators with names unique in the body, each at one of its sites, with
+// finite thrusts min_thrust <= max_thrust, a finite torque coefficient and a
+// finite time constant >= 0; properties that CheckBodyProperties accepts;
+// an initial state that CheckState accepts and that a step of the world takes
+// within world.max_substeps (a new body holds no wrench), else "initial state
+// is spin_aliased".
 void CheckBodyDef(const BodyDef& def, std::size_t index, const WorldDef& world,
                   const Integrator& integrator, const NameLookup& taken = {});
 

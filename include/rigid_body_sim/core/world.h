@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 
+#include "rigid_body_sim/core/actuator_table.h"
 #include "rigid_body_sim/core/body_def.h"
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_id.h"
@@ -80,8 +81,9 @@ class World {
   }
   std::uint64_t step_count() const { return steps_; }
 
-  // Advances every body from t_n to t_(n+1) with the wrenches active at t_n
-  // and gravity, in SubstepsFor substeps. A body whose state would break a
+  // Advances every body from t_n to t_(n+1) with the wrenches active at t_n,
+  // the mean thrusts of the step (ActuatorTable) and gravity, in SubstepsFor
+  // substeps. A body whose state would break a
   // CheckState bound, or that needs more than max_substeps, keeps its last
   // good state and is frozen from then on; the others go on. This is the
   // only place that freezes a body. With options().threads > 1 the blocks of
@@ -94,8 +96,8 @@ class World {
   // The most substeps a body took in the last Step.
   std::uint32_t last_step_substeps_max() const { return last_step_substeps_max_; }
 
-  // Every body back to its initial state, wrenches cleared, faults cleared;
-  // time goes on.
+  // Every body back to its initial state, wrenches and thrusters cleared,
+  // faults cleared; time goes on.
   void Reset();
   // Appends a body that moves from `initial_state` at the next step; its
   // initial state is also what Reset brings it back to. Throws
@@ -110,7 +112,7 @@ class World {
   // Removes the body and its wrenches; the bodies after it move down by one.
   // Tells every listener after it is gone.
   void RemoveBody(BodyId id);
-  // Also clears the body's fault.
+  // Also clears the body's fault; its thrusters go on as they were.
   void SetBodyState(BodyId id, const BodyState& state);
   // `listener` hears of every body added or removed from now on; it must
   // outlive the World or be removed first.
@@ -135,10 +137,25 @@ class World {
   void HoldBodyWrench(const BodyWrench& wrench) { wrenches_.HoldBodyWrench(wrench); }
   // Adds a checked job (WrenchTable::AddJob), counting live jobs at the next step.
   JobRefusal AddWrenchJob(const WrenchJob& job) { return wrenches_.AddJob(job, time()); }
-  void ClearWrenches() { wrenches_.Clear(); }
-  // Drops the body's particle wrenches, body wrench and jobs.
-  void ClearBodyWrenches(BodyId id) { wrenches_.ClearBody(id); }
+  // Drops every wrench and thruster command, every thrust back to 0.
+  void ClearWrenches() {
+    wrenches_.Clear();
+    actuators_.Clear();
+  }
+  // Drops the body's particle wrenches, body wrench, jobs and thruster
+  // commands, its thrusts back to 0.
+  void ClearBodyWrenches(BodyId id) {
+    wrenches_.ClearBody(id);
+    actuators_.ClearBody(id);
+  }
   const WrenchTable& wrenches() const { return wrenches_; }
+  // Holds a checked command for thruster `thruster` of `id` (BodyDef::actuators'
+  // order) from `start_s`, as a wrench is held (ActuatorTable::Hold).
+  void HoldActuatorCommand(BodyId id, std::size_t thruster, double command_n, double start_s) {
+    actuators_.Hold(id, thruster, command_n, start_s);
+  }
+  // The bodies' thrusters, their commands and thrusts.
+  const ActuatorTable& actuators() const { return actuators_; }
 
   // Steps in which a body's pure couple had a component along a null
   // principal axis, which was dropped.
@@ -175,6 +192,7 @@ class World {
   WorldDef options_;
   std::unique_ptr<Integrator> integrator_;
   WrenchTable wrenches_;
+  ActuatorTable actuators_;
   // How a step is carried out, with the schemes' scratch and the threads
   // (src/core/step_engine.h, private to the core). Behind a pointer, so that
   // a World can move.

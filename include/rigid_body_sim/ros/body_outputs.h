@@ -1,14 +1,15 @@
 // The per-body messages a robotics stack consumes (doc/node.md, "Per-body
-// outputs"): TF, pose, twist, odometry, a simulated IMU and the applied
-// wrench. Pure builders over a published state and the core's record of the
-// step that reached it; the caller passes the stamp, the simulation time of
-// that state. Each refers to the body's frame: the body axes, with their
-// origin at the COM or at the reference origin (core::FrameOrigin).
+// outputs"): TF, pose, twist, odometry, a simulated IMU, the applied
+// wrench and the actuators' thrusts. Pure builders over a published state and the core's record of
+// the step that reached it; the caller passes the stamp, the simulation time of that state. Each
+// refers to the body's frame: the body axes, with their origin at the COM or at the reference
+// origin (core::FrameOrigin).
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include <geometry_msgs/Pose.h>
 #include <geometry_msgs/Transform.h>
@@ -17,6 +18,7 @@
 #include <nav_msgs/Odometry.h>
 #include <ros/time.h>
 #include <sensor_msgs/Imu.h>
+#include <sensor_msgs/JointState.h>
 
 #include <Eigen/Core>
 
@@ -81,5 +83,11 @@ geometry_msgs::WrenchStamped ToAppliedWrenchMsg(const core::BodyModel& model,
                                                 const core::Wrench& world_wrench,
                                                 const BodyFrame& body_frame,
                                                 const ros::Time& stamp);
+
+// The thrusts T of a body's actuators at the published state [N]: name =
+// the actuator names, effort = T, no position or velocity.
+sensor_msgs::JointState ToActuatorStatesMsg(const std::vector<std::string>& names,
+                                            const std::vector<double>& thrusts_n,
+                                            const ros::Time& stamp);
 
 }  // namespace rigid_body_sim

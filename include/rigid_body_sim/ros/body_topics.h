@@ -1,11 +1,12 @@
 // Each body's own topics (doc/node.md, "Topics and services"): the
-// publishers (a URDF body with a namespace has its own joint_states) and the
-// wrench subscription in its topic namespace (~<body> unless the body names
-// one), advertised and shut down on a thread of their own. Each is a call to
-// the master of a few milliseconds, so 10,000 bodies' topics would hold the
-// first step back by minutes, and a spawn or delete would make steps late:
-// the stepping thread only queues the work and uses a body's topics once
-// they exist.
+// publishers (a URDF body with a namespace has its own joint_states, a body
+// with actuators its actuator_states) and the subscriptions (wrench, and
+// actuators for a body with actuators) in its topic namespace (~<body>
+// unless the body names one), advertised and shut down on a thread of their
+// own. Each is a call to the master of a few milliseconds, so 10,000 bodies'
+// topics would hold the first step back by minutes, and a spawn or delete
+// would make steps late: the stepping thread only queues the work and uses a
+// body's topics once they exist.
 #pragma once
 
 #include <atomic>
@@ -21,6 +22,7 @@
 #include <vector>
 
 #include <geometry_msgs/WrenchStamped.h>
+#include <rigid_body_sim/ActuatorCommand.h>
 #include <ros/ros.h>
 
 #include "rigid_body_sim/core/body_id.h"
@@ -40,7 +42,7 @@ struct CountedPublisher {
 class BodyTopics {
  public:
   // A body's outputs.
-  enum class Output { kPose, kTwist, kOdom, kImu, kAppliedWrench, kJointStates };
+  enum class Output { kPose, kTwist, kOdom, kImu, kAppliedWrench, kJointStates, kActuatorStates };
   // One body's topics; read only once `advertised` is set.
   struct Topics {
     core::BodyId id;
@@ -55,29 +57,39 @@ class BodyTopics {
     // only for a body that has one (BodyGraphNames::own_joint_states).
     std::optional<std::vector<std::string>> joint_names;
     CountedPublisher joint_states;
+    // The body's actuator names, in its order; actuator_states and actuators
+    // exist only for a body that has some.
+    std::vector<std::string> actuator_names;
+    CountedPublisher actuator_states;
     ros::Subscriber wrench;
+    ros::Subscriber actuators;
     std::atomic<bool> advertised{false};
     std::atomic<bool> removed{false};  // set when the body goes: not advertised after
   };
   // Called on the stepping thread for each message on a body's wrench topic.
   using WrenchCallback =
       std::function<void(const std::string& body, const geometry_msgs::WrenchStamped& msg)>;
+  // Called on the stepping thread for each message on a body's actuators topic.
+  using ActuatorCallback = std::function<void(const std::string& body, const ActuatorCommand& msg)>;
   // Called on the stepping thread for each subscriber that connects to an
   // output of a body that is still there (after it is counted).
   using ConnectCallback = std::function<void(core::BodyId id, Output output,
                                              const ros::SingleSubscriberPublisher& subscriber)>;
 
   // With `enabled` false no per-body topic is ever advertised.
-  BodyTopics(bool enabled, WrenchCallback on_wrench, ConnectCallback on_connect);
+  BodyTopics(bool enabled, WrenchCallback on_wrench, ActuatorCallback on_actuators,
+             ConnectCallback on_connect);
   // Stops the advertising thread; topics not yet advertised never are.
   ~BodyTopics();
   BodyTopics(const BodyTopics&) = delete;
   BodyTopics& operator=(const BodyTopics&) = delete;
 
   // A new body named `body` with its topics in `topic_namespace` (resolved),
-  // joint_states among them when it has `joint_names`; they appear shortly.
+  // joint_states among them when it has `joint_names`, actuators and
+  // actuator_states when it has `actuator_names`; they appear shortly.
   void Add(core::BodyId id, const std::string& body, const std::string& topic_namespace,
-           std::optional<std::vector<std::string>> joint_names = std::nullopt);
+           std::optional<std::vector<std::string>> joint_names = std::nullopt,
+           std::vector<std::string> actuator_names = {});
   // The body goes now; its topics are shut down shortly.
   void Remove(core::BodyId id);
 
@@ -105,6 +117,7 @@ class BodyTopics {
 
   const bool enabled_;
   const WrenchCallback on_wrench_;
+  const ActuatorCallback on_actuators_;
   const ConnectCallback on_connect_;
   core::BodyMap<std::shared_ptr<Topics>> bodies_;  // stepping thread only
   std::size_t body_count_ = 0;                     // stepping thread only

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include <geometry_msgs/WrenchStamped.h>
+#include <rigid_body_sim/ActuatorCommand.h>
 #include <rigid_body_sim/ApplyBodyWrench.h>
 #include <rigid_body_sim/ClearBodyWrenches.h>
 #include <rigid_body_sim/DeleteBody.h>
@@ -54,15 +55,20 @@ class ServiceFront {
                     std::vector<std::string>* rejections = nullptr);
   // A message on ~<body>/wrench (StatePublisher's per-body topics).
   void OnBodyWrench(const std::string& body, const geometry_msgs::WrenchStamped& msg);
+  // A message on the actuators topic of `body` (StatePublisher's per-body
+  // topics): its `body` empty or `body`.
+  void OnActuatorCommand(const std::string& body, const ActuatorCommand& msg);
   // A lockstep answer on ~lockstep_answers: its particle wrenches as an
   // array on ~particle_wrenches, each body wrench as a message on that
-  // body's wrench topic, each actuator command checked as on that body's
+  // body's wrench topic, each actuator command as a message on that body's
   // actuators topic.
   void TakeLockstepAnswer(const LockstepAnswer& answer);
 
  private:
   void OnParticleWrench(const ParticleWrench::ConstPtr& msg);
   void OnParticleWrenches(const ParticleWrenchArray::ConstPtr& msg);
+  // An actuator command naming its body, checked and held, or rejected.
+  void TakeActuatorCommand(const ActuatorCommand& msg);
 
   // Advertises `service` on the request lane: the request is read there and
   // served by `serve` on the stepping thread.

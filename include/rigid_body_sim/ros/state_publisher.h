@@ -30,12 +30,14 @@ namespace rigid_body_sim {
 class StatePublisher : public core::BodyListener {
  public:
   // Advertises the shared topics now and queues each body's own
-  // (BodyTopics); messages on ~<body>/wrench go to `on_body_wrench`. `graph`
+  // (BodyTopics); messages on a body's wrench topic go to `on_body_wrench`,
+  // on its actuators topic to `on_actuator_command`. `graph`
   // holds the graph names of the world's bodies and must outlive it, as must
   // `held_start`.
   StatePublisher(ros::NodeHandle private_nh, const NodeSettings& settings, const core::World& world,
                  const BodyGraphTable& graph, const HeldStart& held_start,
-                 BodyTopics::WrenchCallback on_body_wrench);
+                 BodyTopics::WrenchCallback on_body_wrench,
+                 BodyTopics::ActuatorCallback on_actuator_command);
   // Its connect callbacks call this object: it stays where it was made.
   StatePublisher(const StatePublisher&) = delete;
   StatePublisher& operator=(const StatePublisher&) = delete;
@@ -63,7 +65,8 @@ class StatePublisher : public core::BodyListener {
 
   tf2_msgs::TFMessage TfMessage(const core::World& world, const ros::Time& stamp) const;
   void PublishBodyTopics(const core::World& world, const ros::Time& stamp);
-  // A body's pose, twist or odom at the held start state, to `subscriber`.
+  // A body's pose, twist, odom, joint_states or actuator_states at the held
+  // start state, to `subscriber`.
   void SendHeldBodyOutput(core::BodyId id, BodyTopics::Output output,
                           const ros::SingleSubscriberPublisher& subscriber) const;
   visualization_msgs::MarkerArray ParticlesMessage(const core::World& world,

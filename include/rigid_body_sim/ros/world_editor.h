@@ -11,6 +11,7 @@
 #include <atomic>
 #include <cstddef>
 #include <functional>
+#include <vector>
 
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/body_graph_table.h"
@@ -33,6 +34,10 @@ class WorldEditor {
   // Wrenches already checked (WrenchIntake, JobFromRequest).
   void HoldWrench(const core::ParticleWrench& wrench);
   void HoldBodyWrench(const core::BodyWrench& wrench);
+  // Commands already checked (CheckActuatorCommand): commands_n[i] for
+  // actuator actuators[i] of `body`, from start_s.
+  void HoldActuatorCommands(core::BodyId body, const std::vector<std::size_t>& actuators,
+                            const std::vector<double>& commands_n, double start_s);
   // The world's refusal for its limits, or kNone with the job added.
   core::JobRefusal AddWrenchJob(const core::WrenchJob& job);
   void ClearWrenches();

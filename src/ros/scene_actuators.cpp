@@ -1,0 +1,77 @@
+#include "rigid_body_sim/ros/scene_actuators.h"
+
+#include <set>
+#include <string>
+
+#include "rigid_body_sim/core/validate.h"
+#include "rigid_body_sim/ros/param_values.h"
+#include "rigid_body_sim/ros/scene_error.h"
+
+namespace rigid_body_sim {
+
+using XmlRpc::XmlRpcValue;
+
+namespace {
+
+// The string `member` of `entry` (named `key` in errors): non-empty, at most
+// kMaxBodyNameLength characters.
+std::string ReadName(const XmlRpcValue& entry, const char* member, const std::string& key) {
+  if (!entry.hasMember(member)) throw SceneError(key + " is missing");
+  const XmlRpcValue& value = entry[member];
+  if (value.getType() != XmlRpcValue::TypeString ||
+      static_cast<const std::string&>(value).empty()) {
+    throw SceneError(key + " must be a non-empty string, got " + Describe(value));
+  }
+  const std::string& name = value;
+  if (name.size() > core::kMaxBodyNameLength) {
+    throw SceneError(key + " is longer than " + std::to_string(core::kMaxBodyNameLength) +
+                     " characters");
+  }
+  return name;
+}
+
+}  // namespace
+
+std::vector<core::ThrusterDef> ReadActuators(const XmlRpcValue& value) {
+  if (value.getType() != XmlRpcValue::TypeArray) {
+    throw SceneError("actuators must be a list of {name, site, max_thrust, ...}, got " +
+                     Describe(value));
+  }
+  if (static_cast<std::size_t>(value.size()) > kMaxActuatorsPerBody) {
+    throw SceneError("actuators has " + std::to_string(value.size()) + " entries, at most " +
+                     std::to_string(kMaxActuatorsPerBody) + " are allowed");
+  }
+  static const std::set<std::string> kKeys = {"name",       "site",          "max_thrust",
+                                              "min_thrust", "time_constant", "torque_coefficient"};
+  std::vector<core::ThrusterDef> thrusters;
+  for (int k = 0; k < value.size(); ++k) {
+    const std::string key = "actuators[" + std::to_string(k) + "]";
+    const XmlRpcValue& entry = value[k];
+    if (entry.getType() != XmlRpcValue::TypeStruct) {
+      throw SceneError(key + " must be a map {name, site, max_thrust, ...}, got " +
+                       Describe(entry));
+    }
+    for (const auto& member : entry) {
+      if (kKeys.count(member.first) == 0) {
+        throw SceneError(key + " has unknown key '" + member.first +
+                         "' (known: name, site, max_thrust, min_thrust, time_constant, "
+                         "torque_coefficient)");
+      }
+    }
+    core::ThrusterDef thruster;
+    thruster.name = ReadName(entry, "name", key + ".name");
+    thruster.site = ReadName(entry, "site", key + ".site");
+    if (!entry.hasMember("max_thrust")) throw SceneError(key + ".max_thrust is missing");
+    thruster.max_thrust_n = ReadFiniteNumber(entry["max_thrust"], key + ".max_thrust");
+    const auto optional = [&entry, &key](const char* name) {
+      return entry.hasMember(name) ? ReadFiniteNumber(entry[name], key + "." + name) : 0.0;
+    };
+    thruster.min_thrust_n = optional("min_thrust");
+    thruster.time_constant_s = optional("time_constant");
+    thruster.torque_coefficient_m = optional("torque_coefficient");
+    thrusters.push_back(std::move(thruster));
+  }
+  return thrusters;
+}
+
+}  // namespace rigid_body_sim
