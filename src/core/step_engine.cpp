@@ -5,6 +5,7 @@
 #include <Eigen/Core>
 
 #include "body_batch.h"
+#include "drag_flow.h"
 #include "rigid_body_sim/core/kinematics.h"
 #include "step_policy.h"
 
@@ -41,13 +42,17 @@ StepEngine::StepEngine(std::size_t threads) : team_(threads) {
 
 StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
   hot_ = &bodies->hot();
+  properties_ = &bodies->cold().properties;
   context_ = context;
+  const bool has_drag = context.dragged != nullptr && !context.dragged->empty();
   const std::size_t size = bodies->size();
   if (context.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
   if (context.record) RecordStepStart(bodies);
   for (Share& share : workspace_.shares) {
     share.counts = StepCounts{};
     share.lane_cache.StartStep(context.loads_kept);
+    // The drag flows write states between the scheme's steps.
+    if (has_drag) share.lane_cache.ForgetStates();
   }
   auto step_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
     StepBlock(begin, end, &workspace_.shares[member]);
@@ -96,6 +101,7 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   // Whether every body in the free and the loaded batch is within PlanStep's
   // cheap bound (BodyBatch::within_one_step_bound).
   bool free_within_bound = true, loaded_within_bound = true;
+  AdvanceDragged(begin, end, dt_s / 2);
   for (std::size_t i = begin; i < end; ++i) {
     if (hot.faults[i] != BodyFault::kNone) continue;
     const BodyModel& model = hot.models[i];
@@ -147,6 +153,18 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
   StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
   for (Share::SubstepBatch& batch : share->substep_batches) StepSubstepBatch(&batch, share);
+  AdvanceDragged(begin, end, dt_s / 2);
+}
+
+void StepEngine::AdvanceDragged(std::size_t begin, std::size_t end, double s) {
+  if (context_.dragged == nullptr) return;
+  const std::vector<std::size_t>& dragged = *context_.dragged;
+  for (auto it = std::lower_bound(dragged.begin(), dragged.end(), begin);
+       it != dragged.end() && *it < end; ++it) {
+    const std::size_t i = *it;
+    if (hot_->faults[i] != BodyFault::kNone) continue;
+    AdvanceDrag((*properties_)[i].drag, hot_->models[i], context_.wind_mps, s, &hot_->states[i]);
+  }
 }
 
 void StepEngine::StepBatch(BatchStep step, std::vector<std::size_t>* bodies,
@@ -246,7 +264,7 @@ void StepEngine::Freeze(std::size_t index, BodyFault fault, Share* share) {
   ++share->counts.frozen;
 }
 
-void StepEngine::RecordStepStart(BodyStore* bodies) {
+void StepEngine::RecordStepStart(BodyStore* bodies) const {
   const BodyHotColumns& hot = bodies->hot();
   BodyColdColumns& cold = bodies->cold();
   const std::size_t size = bodies->size();
@@ -261,6 +279,11 @@ void StepEngine::RecordStepStart(BodyStore* bodies) {
         hot.loaded[i] ? hot.loads[i].At(0.0, state.orientation.toRotationMatrix()) : Wrench{};
     record.wrench.force -= properties.linear_damping_per_s * state.linear_momentum;
     record.wrench.torque -= properties.angular_damping_per_s * state.angular_momentum;
+    if (properties.drag.any()) {
+      const Wrench drag = DragWrench(properties.drag, hot.models[i], state, context_.wind_mps);
+      record.wrench.force += drag.force;
+      record.wrench.torque += drag.torque;
+    }
   }
 }
 

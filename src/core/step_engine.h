@@ -20,6 +20,8 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "integrators/exact_free_flow.h"
 #include "lane_cache.h"
 #include "rigid_body_sim/core/body_fault.h"
@@ -42,6 +44,10 @@ struct StepContext {
   bool loads_kept = false;
   // Fill every body's StepRecord in the store (World::RecordNextStep).
   bool record = false;
+  // The indices of the bodies with drag (BodyProperties::drag), ascending,
+  // and the wind they move in over the step [m/s, world axes].
+  const std::vector<std::size_t>* dragged = nullptr;
+  Eigen::Vector3d wind_mps = Eigen::Vector3d::Zero();
 };
 
 // What one step counted, for the World's totals.
@@ -111,7 +117,8 @@ class StepEngine {
     std::vector<ExactFreeFlow> free_flows;
   };
 
-  // Steps the bodies of indices [begin, end) that move, adding to `share`'s counts.
+  // Steps the bodies of indices [begin, end) that move, adding to `share`'s
+  // counts; a body with drag takes its drag flow over dt/2 before and after.
   void StepBlock(std::size_t begin, std::size_t end, Share* share);
   using BatchStep = void (Integrator::*)(const BodyBatch& batch, double dt_s) const;
   // Steps `bodies` by dt through `step` (StepFree or StepLoaded), which
@@ -138,14 +145,18 @@ class StepEngine {
   // The bodies `indices` with the store's columns, the flows and `cache`,
   // for the scheme.
   BodyBatch Batch(const std::vector<std::size_t>& indices, LaneCache* cache);
+  // The drag flow over s of the bodies with drag in indices [begin, end)
+  // that are not frozen.
+  void AdvanceDragged(std::size_t begin, std::size_t end, double s);
   // Fills the store's step records from the states and loads at the start of
   // the step.
-  static void RecordStepStart(BodyStore* bodies);
+  void RecordStepStart(BodyStore* bodies) const;
 
   Workspace workspace_;
   ThreadTeam team_;
   // The step under way (Step): its bodies' columns and its settings.
   BodyHotColumns* hot_ = nullptr;
+  const std::vector<BodyProperties>* properties_ = nullptr;
   StepContext context_;
 };
 

@@ -21,6 +21,7 @@
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/step_record.h"
+#include "rigid_body_sim/core/wind.h"
 #include "rigid_body_sim/core/world_def.h"
 #include "rigid_body_sim/core/wrench_table.h"
 
@@ -81,7 +82,9 @@ class World {
   std::uint64_t step_count() const { return steps_; }
 
   // Advances every body from t_n to t_(n+1) with the wrenches active at t_n
-  // and gravity, in SubstepsFor substeps. A body whose state would break a
+  // and gravity, in SubstepsFor substeps, and a body with drag by its drag
+  // in the wind of t_n over dt/2 before and after that (doc/physics.md,
+  // "Drag and wind"); then the wind moves on to t_(n+1). A body whose state would break a
   // CheckState bound, or that needs more than max_substeps, keeps its last
   // good state and is frozen from then on; the others go on. This is the
   // only place that freezes a body. With options().threads > 1 the blocks of
@@ -94,8 +97,9 @@ class World {
   // The most substeps a body took in the last Step.
   std::uint32_t last_step_substeps_max() const { return last_step_substeps_max_; }
 
-  // Every body back to its initial state, wrenches cleared, faults cleared;
-  // time goes on.
+  // Every body back to its initial state, wrenches cleared, faults cleared,
+  // the wind's gusts back to their lattice step 0 (so they repeat); time
+  // goes on.
   void Reset();
   // Appends a body that moves from `initial_state` at the next step; its
   // initial state is also what Reset brings it back to. Throws
@@ -123,7 +127,12 @@ class World {
   void SetGravity(const Eigen::Vector3d& gravity_mps2);  // finite
   // Applies to the wrenches already held; >= 0, 0: held until replaced.
   void SetWrenchTimeout(double timeout_s);
-  void SetIntegrator(const std::string& name);  // UnknownIntegratorMessage
+  void SetIntegrator(const std::string& name);                // UnknownIntegratorMessage
+  void SetWindVelocity(const Eigen::Vector3d& velocity_mps);  // the mean; finite
+
+  // The wind w = mean + gust [m/s, world axes] over the next step (at time()).
+  Eigen::Vector3d wind_mps() const { return wind_.velocity_mps(); }
+  const Wind& wind() const { return wind_; }
 
   // Why the body is frozen (kNone while it moves).
   BodyFault fault(std::size_t index) const { return bodies_.hot().faults[index]; }
@@ -174,6 +183,10 @@ class World {
   std::vector<BodyListener*> listeners_;
   WorldDef options_;
   std::unique_ptr<Integrator> integrator_;
+  Wind wind_;
+  // The indices of the bodies with drag, ascending: the only ones the drag
+  // flows visit.
+  std::vector<std::size_t> dragged_;
   WrenchTable wrenches_;
   // How a step is carried out, with the schemes' scratch and the threads
   // (src/core/step_engine.h, private to the core). Behind a pointer, so that

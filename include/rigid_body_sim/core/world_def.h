@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "rigid_body_sim/core/default_integrator.h"
+#include "rigid_body_sim/core/wind.h"
 
 namespace rigid_body_sim::core {
 
@@ -27,6 +28,7 @@ struct WorldDef {
   // takes contiguous blocks of them in turn. A body's step reads and writes
   // that body alone, so the states are the same for any count.
   std::size_t threads = 1;
+  WindDef wind;  // still air by default; only bodies with drag feel it
 };
 
 // What a World takes between steps (World::SetIntegrator, SetGravity,
