@@ -32,11 +32,12 @@ struct WorldDef {
 };
 
 // What a World takes between steps (World::SetIntegrator, SetGravity,
-// SetWrenchTimeout), with WorldDef's defaults.
+// SetWrenchTimeout, SetWindVelocity), with WorldDef's defaults.
 struct RuntimeSettings {
   std::string integrator = WorldDef{}.integrator;
-  Eigen::Vector3d gravity_mps2 = WorldDef{}.gravity;      // at every COM, world axes
-  double wrench_timeout_s = WorldDef{}.wrench_timeout_s;  // 0: a wrench is held until replaced
+  Eigen::Vector3d gravity_mps2 = WorldDef{}.gravity;        // at every COM, world axes
+  double wrench_timeout_s = WorldDef{}.wrench_timeout_s;    // 0: a wrench is held until replaced
+  Eigen::Vector3d wind_mps = WorldDef{}.wind.velocity_mps;  // the wind's mean, world axes
 };
 
 }  // namespace rigid_body_sim::core
