@@ -13,6 +13,7 @@
 #include "drag_flow.h"
 #include "rigid_body_sim/core/drag.h"
 #include "rigid_body_sim/core/integrator.h"
+#include "rigid_body_sim/core/step_record.h"
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/core/world.h"
 #include "test_bodies.h"
@@ -305,6 +306,25 @@ TEST(DragWorld, ABodyWithoutDragIgnoresTheWindAndStepsAsBefore) {
     b.Step();
   }
   EXPECT_TRUE(test::SameBits(a.state(0), b.state(0)));
+}
+
+TEST(DragWorld, TheStepRecordsWrenchHoldsTheDragAtTheStart) {
+  WorldDef def;
+  def.wind.velocity_mps = {0.0, 1.0, 0.0};
+  BodyState state;
+  state.linear_momentum = {4.0, 0.0, 0.0};
+  state.angular_momentum = {0.0, 0.0, 0.8};
+  BodyProperties properties;
+  properties.drag.linear_Nspm = {0.5, 0.5, 0.5};
+  properties.drag.angular_quadratic_Nms2 = {0.1, 0.1, 0.1};
+  World world(def, {BodyDef(Sphere(), state, properties)});
+  world.RecordNextStep();
+  world.Step();
+  const StepRecord* record = world.last_step_record(0);
+  ASSERT_NE(record, nullptr);
+  // v_r = (2, −1, 0), ω = (0, 0, 2).
+  EXPECT_EQ(record->wrench.force, Eigen::Vector3d(-1.0, 0.5, 0.0));
+  EXPECT_EQ(record->wrench.torque, Eigen::Vector3d(0.0, 0.0, -0.4));
 }
 
 TEST(DragWorld, BodiesWithDragAreFoundAfterARemoval) {
