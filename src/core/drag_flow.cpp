@@ -7,39 +7,6 @@
 namespace rigid_body_sim::core {
 namespace {
 
-// The translational flow: each body axis of u = Aᵀ(v − w) alone, with a =
-// c_l/M, b = c_q/M. Only the change of u is rotated back, so an axis
-// without drag keeps its momentum bit for bit.
-void AdvanceTranslational(const Drag& drag, const BodyModel& model, const Eigen::Matrix3d& A,
-                          const Eigen::Vector3d& wind_mps, double s, BodyState* state) {
-  const double inverse_mass = model.inverse_mass();
-  const Eigen::Vector3d u0 = A.transpose() * (inverse_mass * state->linear_momentum - wind_mps);
-  Eigen::Vector3d change = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) {
-    change[k] = DecayedSpeed(u0[k], drag.linear_Nspm[k] * inverse_mass,
-                             drag.quadratic_Ns2pm2[k] * inverse_mass, s) -
-                u0[k];
-  }
-  state->linear_momentum += model.mass() * (A * change);
-}
-
-// The angular flow of a body whose Ī is diagonal in body axes: ω_k = L_k/Ī_kk
-// alone per axis, with a = d_l/Ī_kk, b = d_q/Ī_kk (an axis of null moment
-// carries no L).
-Eigen::Vector3d DiagonalAngularChange(const Drag& drag, const Eigen::Matrix3d& inertia,
-                                      const Eigen::Vector3d& momentum_body, double s) {
-  Eigen::Vector3d change = Eigen::Vector3d::Zero();
-  for (int k = 0; k < 3; ++k) {
-    const double moment = inertia(k, k);
-    if (moment == 0.0) continue;
-    const double rate = momentum_body[k] / moment;
-    change[k] = moment * (DecayedSpeed(rate, drag.angular_linear_Nms[k] / moment,
-                                       drag.angular_quadratic_Nms2[k] / moment, s) -
-                          rate);
-  }
-  return change;
-}
-
 // The flow of ẏ = −S y over s for y = Λ^½ ω_P (principal axes), S =
 // Λ^−½ R_BPᵀ diag(d) R_BP Λ^−½ symmetric and positive semi-definite: the
 // decay of each eigenvector of S by e^(−μs), μ >= 0, so |y|² = ω·Īω never
@@ -90,15 +57,71 @@ double DecayedSpeed(double u0, double a_per_s, double b_per_m, double s) {
   return u0 * decay / (1.0 + b_per_m * std::abs(u0) * effective_time_s);
 }
 
-void AdvanceDrag(const Drag& drag, const BodyModel& model, const Eigen::Vector3d& wind_mps,
-                 double s, BodyState* state) {
+DragFlow::AxisDecay DragFlow::Decay(const Eigen::Vector3d& a_per_s, const Eigen::Vector3d& b_per_m,
+                                    double s) {
+  AxisDecay decay;
+  for (int k = 0; k < 3; ++k) {
+    if (a_per_s[k] == 0.0 && b_per_m[k] == 0.0) continue;
+    decay.any = true;
+    decay.quadratic = decay.quadratic || b_per_m[k] > 0.0;
+    decay.decay[k] = std::exp(-a_per_s[k] * s);
+    decay.decay_minus_one[k] = std::expm1(-a_per_s[k] * s);
+    const double effective_time_s = a_per_s[k] > 0.0 ? -decay.decay_minus_one[k] / a_per_s[k] : s;
+    decay.quadratic_time[k] = b_per_m[k] * effective_time_s;
+  }
+  return decay;
+}
+
+Eigen::Vector3d DragFlow::AxisDecay::Change(const Eigen::Vector3d& u) const {
+  // Linear alone: u (e^(−as) − 1), one product per axis.
+  if (!quadratic) return u.cwiseProduct(decay_minus_one);
+  return (u.array() * decay.array() / (1.0 + quadratic_time.array() * u.array().abs()) - u.array())
+      .matrix();
+}
+
+DragFlow::DragFlow(const Drag& drag, const BodyModel& model, double s)
+    : drag_(drag),
+      s_(s),
+      translational_(Decay(model.inverse_mass() * drag.linear_Nspm,
+                           model.inverse_mass() * drag.quadratic_Ns2pm2, s)),
+      diagonal_inertia_(IsDiagonal(model.inertia())) {
+  if (diagonal_inertia_) {
+    // An axis of null moment carries no L: no rate to decay.
+    const Eigen::Vector3d moments = model.inertia().diagonal();
+    Eigen::Vector3d a = Eigen::Vector3d::Zero(), b = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      if (moments[k] == 0.0) continue;
+      a[k] = drag.angular_linear_Nms[k] / moments[k];
+      b[k] = drag.angular_quadratic_Nms2[k] / moments[k];
+    }
+    angular_ = Decay(a, b, s);
+  }
+}
+
+void DragFlow::Advance(const BodyModel& model, const Eigen::Vector3d& wind_mps,
+                       BodyState* state) const {
   const Eigen::Matrix3d A = state->orientation.toRotationMatrix();
-  if (drag.has_translational()) AdvanceTranslational(drag, model, A, wind_mps, s, state);
-  if (!drag.has_angular()) return;
+  if (translational_.any) {
+    // Only the change of u is turned back to world axes, so that an axis
+    // without drag keeps its momentum bit for bit.
+    const Eigen::Vector3d u =
+        A.transpose() * (model.inverse_mass() * state->linear_momentum - wind_mps);
+    state->linear_momentum += model.mass() * (A * translational_.Change(u));
+  }
+  if (!drag_.has_angular()) return;
   const Eigen::Vector3d momentum_body = A.transpose() * state->angular_momentum;
-  const Eigen::Vector3d change =
-      IsDiagonal(model.inertia()) ? DiagonalAngularChange(drag, model.inertia(), momentum_body, s)
-                                  : GeneralAngularChange(drag, model, momentum_body, s);
+  Eigen::Vector3d change;
+  if (diagonal_inertia_) {
+    if (!angular_.any) return;
+    const Eigen::Vector3d moments = model.inertia().diagonal();
+    Eigen::Vector3d rate = Eigen::Vector3d::Zero();
+    for (int k = 0; k < 3; ++k) {
+      if (moments[k] != 0.0) rate[k] = momentum_body[k] / moments[k];
+    }
+    change = moments.cwiseProduct(angular_.Change(rate));
+  } else {
+    change = GeneralAngularChange(drag_, model, momentum_body, s_);
+  }
   state->angular_momentum += A * change;
 }
 

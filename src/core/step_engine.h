@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "drag_flow.h"
 #include "integrators/exact_free_flow.h"
 #include "lane_cache.h"
 #include "rigid_body_sim/core/body_fault.h"
@@ -79,6 +80,8 @@ class StepEngine {
   void OnBodyRemoved(std::size_t index);
   // The World steps with another scheme from the next step on.
   void OnIntegratorChanged();
+  // A body with drag was added (a removal is OnBodyRemoved).
+  void OnDraggedChanged() { drag_flows_.clear(); }
 
  private:
   // One thread's share of a Step: its batches, and what it counts over the
@@ -145,9 +148,11 @@ class StepEngine {
   // The bodies `indices` with the store's columns, the flows and `cache`,
   // for the scheme.
   BodyBatch Batch(const std::vector<std::size_t>& indices, LaneCache* cache);
-  // The drag flow over s of the bodies with drag in indices [begin, end)
+  // The drag flow over dt/2 of the bodies with drag in indices [begin, end)
   // that are not frozen.
-  void AdvanceDragged(std::size_t begin, std::size_t end, double s);
+  void AdvanceDragged(std::size_t begin, std::size_t end) const;
+  // drag_flows_ for the step's bodies with drag and dt, if they are not.
+  void PrepareDragFlows(const BodyStore& bodies);
   // Fills the store's step records from the states and loads at the start of
   // the step.
   void RecordStepStart(BodyStore* bodies) const;
@@ -156,8 +161,11 @@ class StepEngine {
   ThreadTeam team_;
   // The step under way (Step): its bodies' columns and its settings.
   BodyHotColumns* hot_ = nullptr;
-  const std::vector<BodyProperties>* properties_ = nullptr;
   StepContext context_;
+  // The drag flow over dt/2 of each body of StepContext::dragged, in its
+  // order; empty when the bodies with drag changed since they were made.
+  std::vector<DragFlow> drag_flows_;
+  double drag_flows_dt_s_ = 0.0;
 };
 
 }  // namespace rigid_body_sim::core

@@ -63,6 +63,7 @@ BodyId World::AddBody(BodyDef def) {
   CheckBody(index, def);
   const BodyId id = bodies_.Add(std::move(def));
   PrepareBody(index);
+  if (bodies_.cold().properties[index].drag.any()) engine_->OnDraggedChanged();
   // Sums again, with gravity on the new body.
   wrenches_.AddBody(id, bodies_.hot().models[index].particle_count());
   for (BodyListener* listener : listeners_) listener->OnBodyAdded(*this, id);
