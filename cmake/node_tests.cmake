@@ -59,6 +59,7 @@ add_rostest(test/ros/empty_world.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/body_frames.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/tf_prefix.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/clock_rate.test DEPENDENCIES rigid_body_sim_node)
+add_rostest(test/ros/drag_wind.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/start_paused.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/cpp_examples.test DEPENDENCIES rigid_body_sim_node step_client hold_controller)
 

@@ -42,12 +42,16 @@ StepEngine::StepEngine(std::size_t threads) : team_(threads) {
 StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
   hot_ = &bodies->hot();
   context_ = context;
+  const bool has_drag = context.dragged != nullptr && !context.dragged->empty();
+  if (has_drag) PrepareDragFlows(*bodies);
   const std::size_t size = bodies->size();
   if (context.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
   if (context.record) RecordStepStart(bodies);
   for (Share& share : workspace_.shares) {
     share.counts = StepCounts{};
     share.lane_cache.StartStep(context.loads_kept);
+    // The drag flows write states between the scheme's steps.
+    if (has_drag) share.lane_cache.ForgetStates();
   }
   auto step_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
     StepBlock(begin, end, &workspace_.shares[member]);
@@ -67,6 +71,7 @@ void StepEngine::OnStatesWritten() {
 }
 
 void StepEngine::OnBodyRemoved(std::size_t index) {
+  drag_flows_.clear();  // the bodies with drag moved down, or one is gone
   std::vector<ExactFreeFlow>& flows = workspace_.free_flows;
   if (index < flows.size()) flows.erase(flows.begin() + static_cast<std::ptrdiff_t>(index));
   OnStatesWritten();  // the bodies after it moved down
@@ -96,6 +101,7 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   // Whether every body in the free and the loaded batch is within PlanStep's
   // cheap bound (BodyBatch::within_one_step_bound).
   bool free_within_bound = true, loaded_within_bound = true;
+  AdvanceDragged(begin, end);
   for (std::size_t i = begin; i < end; ++i) {
     if (hot.faults[i] != BodyFault::kNone) continue;
     const BodyModel& model = hot.models[i];
@@ -147,6 +153,31 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
   StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
   for (Share::SubstepBatch& batch : share->substep_batches) StepSubstepBatch(&batch, share);
+  AdvanceDragged(begin, end);
+}
+
+void StepEngine::PrepareDragFlows(const BodyStore& bodies) {
+  const std::vector<std::size_t>& dragged = *context_.dragged;
+  if (drag_flows_.size() == dragged.size() && drag_flows_dt_s_ == context_.dt_s) return;
+  drag_flows_.clear();
+  drag_flows_.reserve(dragged.size());
+  for (const std::size_t i : dragged) {
+    drag_flows_.emplace_back(bodies.cold().properties[i].drag, bodies.hot().models[i],
+                             context_.dt_s / 2);
+  }
+  drag_flows_dt_s_ = context_.dt_s;
+}
+
+void StepEngine::AdvanceDragged(std::size_t begin, std::size_t end) const {
+  if (context_.dragged == nullptr) return;
+  const std::vector<std::size_t>& dragged = *context_.dragged;
+  for (auto it = std::lower_bound(dragged.begin(), dragged.end(), begin);
+       it != dragged.end() && *it < end; ++it) {
+    const std::size_t i = *it;
+    if (hot_->faults[i] != BodyFault::kNone) continue;
+    const std::size_t position = static_cast<std::size_t>(it - dragged.begin());
+    drag_flows_[position].Advance(hot_->models[i], context_.wind_mps, &hot_->states[i]);
+  }
 }
 
 void StepEngine::StepBatch(BatchStep step, std::vector<std::size_t>* bodies,
@@ -246,7 +277,7 @@ void StepEngine::Freeze(std::size_t index, BodyFault fault, Share* share) {
   ++share->counts.frozen;
 }
 
-void StepEngine::RecordStepStart(BodyStore* bodies) {
+void StepEngine::RecordStepStart(BodyStore* bodies) const {
   const BodyHotColumns& hot = bodies->hot();
   BodyColdColumns& cold = bodies->cold();
   const std::size_t size = bodies->size();
@@ -261,6 +292,11 @@ void StepEngine::RecordStepStart(BodyStore* bodies) {
         hot.loaded[i] ? hot.loads[i].At(0.0, state.orientation.toRotationMatrix()) : Wrench{};
     record.wrench.force -= properties.linear_damping_per_s * state.linear_momentum;
     record.wrench.torque -= properties.angular_damping_per_s * state.angular_momentum;
+    if (properties.drag.any()) {
+      const Wrench drag = DragWrench(properties.drag, hot.models[i], state, context_.wind_mps);
+      record.wrench.force += drag.force;
+      record.wrench.torque += drag.torque;
+    }
   }
 }
 

@@ -20,6 +20,9 @@
 #include <cstdint>
 #include <vector>
 
+#include <Eigen/Core>
+
+#include "drag_flow.h"
 #include "integrators/exact_free_flow.h"
 #include "lane_cache.h"
 #include "rigid_body_sim/core/body_fault.h"
@@ -42,6 +45,10 @@ struct StepContext {
   bool loads_kept = false;
   // Fill every body's StepRecord in the store (World::RecordNextStep).
   bool record = false;
+  // The indices of the bodies with drag (BodyProperties::drag), ascending,
+  // and the wind they move in over the step [m/s, world axes].
+  const std::vector<std::size_t>* dragged = nullptr;
+  Eigen::Vector3d wind_mps = Eigen::Vector3d::Zero();
 };
 
 // What one step counted, for the World's totals.
@@ -73,6 +80,8 @@ class StepEngine {
   void OnBodyRemoved(std::size_t index);
   // The World steps with another scheme from the next step on.
   void OnIntegratorChanged();
+  // A body with drag was added (a removal is OnBodyRemoved).
+  void OnDraggedChanged() { drag_flows_.clear(); }
 
  private:
   // One thread's share of a Step: its batches, and what it counts over the
@@ -111,7 +120,8 @@ class StepEngine {
     std::vector<ExactFreeFlow> free_flows;
   };
 
-  // Steps the bodies of indices [begin, end) that move, adding to `share`'s counts.
+  // Steps the bodies of indices [begin, end) that move, adding to `share`'s
+  // counts; a body with drag takes its drag flow over dt/2 before and after.
   void StepBlock(std::size_t begin, std::size_t end, Share* share);
   using BatchStep = void (Integrator::*)(const BodyBatch& batch, double dt_s) const;
   // Steps `bodies` by dt through `step` (StepFree or StepLoaded), which
@@ -138,15 +148,24 @@ class StepEngine {
   // The bodies `indices` with the store's columns, the flows and `cache`,
   // for the scheme.
   BodyBatch Batch(const std::vector<std::size_t>& indices, LaneCache* cache);
+  // The drag flow over dt/2 of the bodies with drag in indices [begin, end)
+  // that are not frozen.
+  void AdvanceDragged(std::size_t begin, std::size_t end) const;
+  // drag_flows_ for the step's bodies with drag and dt, if they are not.
+  void PrepareDragFlows(const BodyStore& bodies);
   // Fills the store's step records from the states and loads at the start of
   // the step.
-  static void RecordStepStart(BodyStore* bodies);
+  void RecordStepStart(BodyStore* bodies) const;
 
   Workspace workspace_;
   ThreadTeam team_;
   // The step under way (Step): its bodies' columns and its settings.
   BodyHotColumns* hot_ = nullptr;
   StepContext context_;
+  // The drag flow over dt/2 of each body of StepContext::dragged, in its
+  // order; empty when the bodies with drag changed since they were made.
+  std::vector<DragFlow> drag_flows_;
+  double drag_flows_dt_s_ = 0.0;
 };
 
 }  // namespace rigid_body_sim::core

@@ -37,6 +37,23 @@ std::string PropertiesError(const BodyProperties& properties) {
   };
   std::string error = damping_error("linear_damping", properties.linear_damping_per_s);
   if (error.empty()) error = damping_error("angular_damping", properties.angular_damping_per_s);
+  const Drag& drag = properties.drag;
+  const auto drag_error = [](const char* key, const Eigen::Vector3d& value,
+                             const char* unit) -> std::string {
+    for (int k = 0; k < 3; ++k) {
+      if (!std::isfinite(value[k]) || value[k] < 0.0) {
+        return std::string("drag.") + key + " must be 3 finite numbers >= 0 [" + unit + "], got " +
+               FormatNumber(value[k]);
+      }
+    }
+    return "";
+  };
+  if (error.empty()) error = drag_error("linear", drag.linear_Nspm, "N s/m");
+  if (error.empty()) error = drag_error("quadratic", drag.quadratic_Ns2pm2, "N s^2/m^2");
+  if (error.empty()) error = drag_error("angular.linear", drag.angular_linear_Nms, "N m s");
+  if (error.empty()) {
+    error = drag_error("angular.quadratic", drag.angular_quadratic_Nms2, "N m s^2");
+  }
   return error;
 }
 
@@ -82,6 +99,15 @@ void CheckWrenchTimeout(double timeout_s) {
   RBS_CHECK(std::isfinite(timeout_s) && timeout_s >= 0.0, "wrench timeout must be finite and >= 0");
 }
 
+void CheckWindDef(const WindDef& def) {
+  RBS_CHECK(def.velocity_mps.allFinite(), "wind.velocity must be finite");
+  RBS_CHECK(def.gust_stddev_mps.allFinite() && (def.gust_stddev_mps.array() >= 0.0).all(),
+            "wind.gust_stddev must be 3 finite numbers >= 0 [m/s]");
+  RBS_CHECK(std::isfinite(def.gust_time_constant_s) && def.gust_time_constant_s > 0.0,
+            "wind.gust_time_constant must be a finite number > 0 [s], got " +
+                FormatNumber(def.gust_time_constant_s));
+}
+
 void CheckWorldDef(const WorldDef& def) {
   CheckIntegratorName(def.integrator);
   RBS_CHECK(def.dt_s > 0.0, "dt must be > 0");
@@ -91,6 +117,7 @@ void CheckWorldDef(const WorldDef& def) {
   CheckGravity(def.gravity);
   CheckWrenchTimeout(def.wrench_timeout_s);
   RBS_CHECK(def.max_substeps >= 1, "max_substeps must be >= 1");
+  CheckWindDef(def.wind);
 }
 
 void CheckBodyName(const std::string& name, std::size_t index) {

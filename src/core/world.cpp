@@ -19,7 +19,7 @@ constexpr double kTimeToleranceInSteps = 1e-3;
 }  // namespace
 
 World::World(const WorldDef& def, std::vector<BodyDef> bodies)
-    : options_(def), integrator_(MakeIntegrator(def.integrator)) {
+    : options_(def), integrator_(MakeIntegrator(def.integrator)), wind_(def.wind, def.dt_s) {
   CheckWorldDef(options_);
   has_gravity_ = !options_.gravity.isZero(0.0);
   for (std::size_t i = 0; i < bodies.size(); ++i) {
@@ -58,6 +58,7 @@ void World::PrepareBody(std::size_t index) {
   const BodyProperties& properties = bodies_.cold().properties[index];
   hot.loads[index].SetDamping(properties.linear_damping_per_s, properties.angular_damping_per_s);
   hot.one_step_momentum_sq[index] = OneStepMomentumSq(model, options_.dt_s);
+  if (properties.drag.any()) dragged_.push_back(index);  // the last index: the list stays sorted
 }
 
 BodyId World::AddBody(BodyDef def) {
@@ -66,6 +67,7 @@ BodyId World::AddBody(BodyDef def) {
   std::vector<ThrusterDef> thrusters = std::move(def.actuators);
   const BodyId id = bodies_.Add(std::move(def));
   PrepareBody(index);
+  if (bodies_.cold().properties[index].drag.any()) engine_->OnDraggedChanged();
   // Sums again, with gravity on the new body.
   wrenches_.AddBody(id, bodies_.hot().models[index].particle_count());
   actuators_.AddBody(id, bodies_.hot().models[index], bodies_.cold().frames[index],
@@ -81,6 +83,10 @@ void World::RemoveBody(BodyId id) {
   engine_->OnBodyRemoved(index);
   wrenches_.RemoveBody(id);  // sums again: the loads moved with their bodies
   actuators_.RemoveBody(id);
+  dragged_.erase(std::remove(dragged_.begin(), dragged_.end(), index), dragged_.end());
+  for (std::size_t& dragged : dragged_) {
+    if (dragged > index) --dragged;
+  }
   for (BodyListener* listener : listeners_) listener->OnBodyRemoved(*this, id);
 }
 
@@ -118,9 +124,11 @@ void World::Step() {
   }
   last_step_recorded_ = record_next_step_;
   record_next_step_ = false;
-  const StepContext context{integrator_.get(), options_.dt_s, options_.max_substeps, !loads_changed,
-                            last_step_recorded_};
+  const StepContext context{integrator_.get(),   options_.dt_s,       options_.max_substeps,
+                            !loads_changed,      last_step_recorded_, &dragged_,
+                            wind_.velocity_mps()};
   const StepCounts counts = engine_->Step(&bodies_, context);
+  wind_.Advance();
   frozen_count_ += counts.frozen;
   dropped_couples_ += counts.dropped_couples;
   last_step_substeps_max_ = counts.substeps_max;
@@ -137,6 +145,7 @@ void World::Reset() {
   hot.faults.assign(size(), BodyFault::kNone);
   frozen_count_ = 0;
   cold.step_record_valid.assign(cold.step_record_valid.size(), 0);
+  wind_.Restart();
 }
 
 void World::SetBodyState(BodyId id, const BodyState& state) {
@@ -162,6 +171,14 @@ void World::SetGravity(const Eigen::Vector3d& gravity_mps2) {
 void World::SetWrenchTimeout(double timeout_s) {
   CheckWrenchTimeout(timeout_s);
   options_.wrench_timeout_s = timeout_s;  // WrenchTable::Reduce sees the change
+}
+
+void World::SetWindVelocity(const Eigen::Vector3d& velocity_mps) {
+  WindDef def = wind_.def();
+  def.velocity_mps = velocity_mps;
+  CheckWindDef(def);
+  wind_.SetMeanVelocity(velocity_mps);
+  options_.wind.velocity_mps = velocity_mps;
 }
 
 void World::SetIntegrator(const std::string& name) {

@@ -17,6 +17,9 @@ SimulationNodeConfig ToConfig(const RuntimeKeys& keys) {
   config.gravity_y = keys.gravity_mps2.y();
   config.gravity_z = keys.gravity_mps2.z();
   config.wrench_timeout = keys.wrench_timeout_s;
+  config.wind_x = keys.wind_mps.x();
+  config.wind_y = keys.wind_mps.y();
+  config.wind_z = keys.wind_mps.z();
   config.publish_tf = keys.publish_tf;
   config.integrator = keys.integrator;
   return config;
@@ -27,6 +30,7 @@ NodeSettings WithConfig(NodeSettings settings, const SimulationNodeConfig& confi
   settings.publish_rate_hz = config.publish_rate;
   settings.gravity_mps2 = {config.gravity_x, config.gravity_y, config.gravity_z};
   settings.wrench_timeout_s = config.wrench_timeout;
+  settings.wind_mps = {config.wind_x, config.wind_y, config.wind_z};
   settings.publish_tf = config.publish_tf;
   settings.integrator = config.integrator;
   return settings;
@@ -71,11 +75,16 @@ void RuntimeConfig::OnReconfigure(SimulationNodeConfig& config, std::uint32_t /*
     config = ToConfig(in_force_);
     return;
   }
+  const bool wind_changed = requested.wind_mps != in_force_.wind_mps;
   apply_(requested);  // the node's settings are `requested` from here on
-  // The scene's key, so that a respawned node starts with this gravity too
-  // (the server writes gravity_x... and the other keys itself).
+  // The scene's keys, so that a respawned node starts with this gravity and
+  // wind too (the server writes gravity_x... and the other keys itself).
   const Eigen::Vector3d& g = requested.gravity_mps2;
   private_nh_.setParam("gravity", std::vector<double>{g.x(), g.y(), g.z()});
+  if (wind_changed) {
+    const Eigen::Vector3d& w = requested.wind_mps;
+    private_nh_.setParam("wind/velocity", std::vector<double>{w.x(), w.y(), w.z()});
+  }
 }
 
 }  // namespace rigid_body_sim

@@ -55,6 +55,20 @@ void CheckGravityKeys(const Eigen::Vector3d& gravity_mps2) {
   }
 }
 
+// The same for the wind's mean, a key per axis.
+void CheckWindKeys(const Eigen::Vector3d& wind_mps) {
+  const char* const keys[] = {"wind_x", "wind_y", "wind_z"};
+  for (int axis = 0; axis < 3; ++axis) {
+    core::WindDef alone;
+    alone.velocity_mps[axis] = wind_mps[axis];
+    NamedByKey([&] { core::CheckWindDef(alone); },
+               [&](const std::string&) {
+                 return std::string(keys[axis]) + " must be finite, got " +
+                        FormatNumber(wind_mps[axis]);
+               });
+  }
+}
+
 }  // namespace
 
 void CheckIntegratorKey(const std::string& name, KeyNaming naming) {
@@ -86,6 +100,7 @@ void CheckRuntimeKeys(const RuntimeKeys& keys, double rate_hz) {
   CheckPublishRate(keys.publish_rate_hz, rate_hz, KeyNaming::kRuntime);
   CheckGravityKeys(keys.gravity_mps2);
   CheckWrenchTimeoutKey(keys.wrench_timeout_s, KeyNaming::kRuntime);
+  CheckWindKeys(keys.wind_mps);
   CheckIntegratorKey(keys.integrator, KeyNaming::kRuntime);
 }
 

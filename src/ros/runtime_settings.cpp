@@ -18,18 +18,20 @@ void SimulationNode::ApplyRuntimeSettings(const NodeSettings& next) {
   if (next.wrench_timeout_s != settings_.wrench_timeout_s) {
     world_.SetWrenchTimeout(next.wrench_timeout_s);
   }
+  if (next.wind_mps != settings_.wind_mps) world_.SetWindVelocity(next.wind_mps);
   if (next.integrator != settings_.integrator) world_.SetIntegrator(next.integrator);
   publisher_.SetPublishTf(next.publish_tf);
   settings_ = next;  // Status() reads the real-time factor target here
   LogOffThread(LogLevel::kInfo,
                Format("runtime configuration applied at sim time %.3f s: integrator %s, publishing "
                       "every %llu steps, real-time factor %g, gravity [%g, %g, %g] m/s^2, wrench "
-                      "timeout %g s, publish_tf %s",
+                      "timeout %g s, wind [%g, %g, %g] m/s, publish_tf %s",
                       Stamp().toSec(), world_.integrator().name(),
                       static_cast<unsigned long long>(lattice_.publish_every_steps()),
                       settings_.real_time_factor, settings_.gravity_mps2.x(),
                       settings_.gravity_mps2.y(), settings_.gravity_mps2.z(),
-                      settings_.wrench_timeout_s, settings_.publish_tf ? "true" : "false"));
+                      settings_.wrench_timeout_s, settings_.wind_mps.x(), settings_.wind_mps.y(),
+                      settings_.wind_mps.z(), settings_.publish_tf ? "true" : "false"));
 }
 
 }  // namespace rigid_body_sim

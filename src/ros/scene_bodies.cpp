@@ -102,10 +102,19 @@ std::vector<core::Particle> ReadShape(const XmlRpcValue& body, const std::string
 }
 
 void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) {
-  static const std::set<std::string> kCommonKeys = {
-      "name",          "position",       "orientation",     "linear_velocity", "angular_velocity",
-      "gravity_scale", "linear_damping", "angular_damping", "frame",           "sites",
-      "namespace",     "actuators"};
+  static const std::set<std::string> kCommonKeys = {"name",
+                                                    "position",
+                                                    "orientation",
+                                                    "linear_velocity",
+                                                    "angular_velocity",
+                                                    "gravity_scale",
+                                                    "linear_damping",
+                                                    "angular_damping",
+                                                    "frame",
+                                                    "sites",
+                                                    "namespace",
+                                                    "actuators",
+                                                    "drag"};
   for (const auto& member : body) {
     if (kCommonKeys.count(member.first) || kind_keys.count(member.first)) continue;
     std::string known;
@@ -120,6 +129,40 @@ Eigen::Vector3d ReadOptionalVector3(const XmlRpcValue& body, const std::string& 
   return body.hasMember(key) ? ReadFiniteVector<3>(body[key], key) : Eigen::Vector3d::Zero();
 }
 
+// Refuses `value` (named `key`) unless it is a dictionary of the keys `known`.
+void CheckDragKeys(const XmlRpcValue& value, const std::string& key,
+                   const std::set<std::string>& known) {
+  if (value.getType() != XmlRpcValue::TypeStruct) {
+    throw SceneError(key + " must be a dictionary, got " + Describe(value));
+  }
+  for (const auto& member : value) {
+    if (known.count(member.first) == 0) {
+      std::string list;
+      for (const auto& name : known) list += name + ", ";
+      throw SceneError(key + ": unknown key '" + member.first +
+                       "' (known here: " + list.substr(0, list.size() - 2) + ")");
+    }
+  }
+}
+
+// drag: {linear: [3], quadratic: [3], angular: {linear: [3], quadratic: [3]}}.
+core::Drag ReadDrag(const XmlRpcValue& value) {
+  core::Drag drag;
+  CheckDragKeys(value, "drag", {"linear", "quadratic", "angular"});
+  const auto read = [](const XmlRpcValue& map, const char* key, const std::string& name) {
+    return map.hasMember(key) ? ReadFiniteVector<3>(map[key], name) : Eigen::Vector3d::Zero();
+  };
+  drag.linear_Nspm = read(value, "linear", "drag.linear");
+  drag.quadratic_Ns2pm2 = read(value, "quadratic", "drag.quadratic");
+  if (value.hasMember("angular")) {
+    const XmlRpcValue& angular = value["angular"];
+    CheckDragKeys(angular, "drag.angular", {"linear", "quadratic"});
+    drag.angular_linear_Nms = read(angular, "linear", "drag.angular.linear");
+    drag.angular_quadratic_Nms2 = read(angular, "quadratic", "drag.angular.quadratic");
+  }
+  return drag;
+}
+
 core::BodyProperties ReadProperties(const XmlRpcValue& body) {
   core::BodyProperties properties;
   if (body.hasMember("gravity_scale")) {
@@ -131,6 +174,7 @@ core::BodyProperties ReadProperties(const XmlRpcValue& body) {
   if (body.hasMember("angular_damping")) {
     properties.angular_damping_per_s = ReadFiniteNumber(body["angular_damping"], "angular_damping");
   }
+  if (body.hasMember("drag")) properties.drag = ReadDrag(body["drag"]);
   core::CheckBodyProperties(properties);
   return properties;
 }

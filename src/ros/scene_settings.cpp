@@ -6,6 +6,7 @@
 #include <ros/names.h>
 
 #include "rigid_body_sim/core/format_number.h"
+#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/runtime_keys.h"
 #include "rigid_body_sim/ros/scene_error.h"
@@ -118,6 +119,39 @@ LockstepSettings ReadLockstep(const ParamReader& params) {
   return lockstep;
 }
 
+// ~wind: {velocity, gust_stddev, gust_time_constant, seed}, each optional.
+core::WindDef ReadWind(const ParamReader& params) {
+  core::WindDef wind;
+  XmlRpcValue value;
+  if (!params.Get("wind", &value)) return wind;
+  if (value.getType() != XmlRpcValue::TypeStruct) {
+    throw SceneError(
+        "~wind must be a dictionary {velocity, gust_stddev, gust_time_constant, "
+        "seed}, got " +
+        Describe(value));
+  }
+  for (const auto& member : value) {
+    const std::string& key = member.first;
+    if (key == "velocity") {
+      wind.velocity_mps = ReadFiniteVector<3>(member.second, "~wind.velocity");
+    } else if (key == "gust_stddev") {
+      wind.gust_stddev_mps = ReadFiniteVector<3>(member.second, "~wind.gust_stddev");
+    } else if (key == "gust_time_constant") {
+      wind.gust_time_constant_s = ReadFiniteNumber(member.second, "~wind.gust_time_constant");
+    } else if (key == "seed") {
+      if (member.second.getType() != XmlRpcValue::TypeInt || static_cast<int>(member.second) < 0) {
+        throw SceneError("~wind.seed must be an integer >= 0, got " + Describe(member.second));
+      }
+      wind.seed = static_cast<std::uint64_t>(static_cast<int>(member.second));
+    } else {
+      throw SceneError("~wind: unknown key '" + key +
+                       "' (known here: velocity, gust_stddev, gust_time_constant, seed)");
+    }
+  }
+  AsSceneError([&] { core::CheckWindDef(wind); });
+  return wind;
+}
+
 ShardSettings ReadShard(const ParamReader& params) {
   const double count = params.Number("shard_count", 1.0);
   if (count < 1.0 || count > kMaxShards || count != std::floor(count)) {
@@ -189,6 +223,8 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   settings.integrator = params.String("integrator", settings.integrator);
   AsSceneError([&] { CheckIntegratorKey(settings.integrator, KeyNaming::kParameter); });
   settings.gravity_mps2 = params.Vector3("gravity", settings.gravity_mps2);  // finite once read
+  settings.wind = ReadWind(params);
+  settings.wind_mps = settings.wind.velocity_mps;
   settings.wrench_timeout_s = params.Number("wrench_timeout", settings.wrench_timeout_s);
   AsSceneError([&] { CheckWrenchTimeoutKey(settings.wrench_timeout_s, KeyNaming::kParameter); });
   settings.real_time_factor = params.Number("real_time_factor", settings.real_time_factor);

@@ -28,6 +28,8 @@ core::WorldDef MakeWorldDef(const NodeSettings& settings) {
   def.wrench_timeout_s = settings.wrench_timeout_s;
   def.max_substeps = settings.max_substeps;
   def.threads = settings.threads;
+  def.wind = settings.wind;
+  def.wind.velocity_mps = settings.wind_mps;  // the runtime key's, read from wind.velocity
   return def;
 }
 

@@ -4,6 +4,7 @@
 
 #include <geometry_msgs/PoseStamped.h>
 #include <geometry_msgs/TwistStamped.h>
+#include <geometry_msgs/Vector3Stamped.h>
 #include <rigid_body_sim/BodyStateArray.h>
 
 #include "rigid_body_sim/core/kinematics.h"
@@ -49,6 +50,19 @@ geometry_msgs::TwistStamped TwistMessage(const core::World& world, std::size_t b
   twist.header.frame_id = world_frame;
   twist.twist = ToFrameTwistMsg(world.model(body), world.state(body), frame.origin);
   return twist;
+}
+
+// The wind over the step that starts at `stamp` (doc/node.md, "~wind").
+geometry_msgs::Vector3Stamped WindMessage(const core::World& world, const std::string& world_frame,
+                                          const ros::Time& stamp) {
+  geometry_msgs::Vector3Stamped wind;
+  wind.header.stamp = stamp;
+  wind.header.frame_id = world_frame;
+  const Eigen::Vector3d velocity_mps = world.wind_mps();
+  wind.vector.x = velocity_mps.x();
+  wind.vector.y = velocity_mps.y();
+  wind.vector.z = velocity_mps.z();
+  return wind;
 }
 
 }  // namespace
@@ -101,6 +115,11 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
       [this](const ros::SingleSubscriberPublisher& subscriber) {
         subscriber.publish(ParticlesMessage(held_start_.world(), held_start_.stamp()));
       });
+  Advertise<geometry_msgs::Vector3Stamped>(
+      private_nh, "wind", kStateQueueSize, &wind_,
+      [this](const ros::SingleSubscriberPublisher& subscriber) {
+        subscriber.publish(WindMessage(held_start_.world(), world_frame_, held_start_.stamp()));
+      });
   for (std::size_t index = 0; index < world.size(); ++index) OnBodyAdded(world, world.id(index));
 }
 
@@ -133,6 +152,7 @@ void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
     bodies_.publisher.publish(ToBodyStateArray(world, stamp, world_frame_));
   }
   if (particles_.subscribers > 0) particles_.publisher.publish(ParticlesMessage(world, stamp));
+  if (wind_.subscribers > 0) wind_.publisher.publish(WindMessage(world, world_frame_, stamp));
   joint_states_.Publish(stamp);
   deleted_marker_ids_.clear();
 }

@@ -4,7 +4,8 @@
 An invalid scene or parameter (`bodies` not a list, a duplicate or empty
 name, a mass <= 0 or not finite, a position not of 3 finite numbers, a
 non-positive rate, `publish_rate` > `rate`, a `clock_rate` that does not
-divide `rate` a whole number of times, an unknown integrator, a
+divide `rate` a whole number of times, an unknown integrator, a `wind` or a
+body's `drag` out of range or with an unknown key, a
 `spawn_file_roots` entry that is not an absolute directory) stops the
 node at start with a non-zero exit and one error line that names the offending
 entry and key.
@@ -311,6 +312,20 @@ class InvalidScene(unittest.TestCase):
         self.check_rejected('unknown_integrator',
                             {'integrator': 'no_such_scheme', 'bodies': [good_body()]},
                             'integrator')
+
+    def test_wind_gust_time_constant_zero(self):
+        self.check_rejected('wind_gust_time_constant_zero',
+                            {'wind': {'gust_stddev': [1.0, 1.0, 0.0], 'gust_time_constant': 0.0},
+                             'bodies': [good_body()]}, 'wind.gust_time_constant')
+
+    def test_wind_unknown_key(self):
+        self.check_rejected('wind_unknown_key',
+                            {'wind': {'gusts': 1.0}, 'bodies': [good_body()]}, 'wind')
+
+    def test_drag_negative(self):
+        self.check_rejected('drag_negative',
+                            {'bodies': [good_body(), bad_body(drag={'linear': [0.1, -0.1, 0.0]})]},
+                            'drag.linear', entry='badbody', index=1)
 
     def test_status_period_negative(self):
         self.check_rejected('status_period_negative',

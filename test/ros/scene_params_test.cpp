@@ -311,6 +311,35 @@ TEST(SceneParams, GravityScaleAndDampingAreReadAndChecked) {
             "bodies[0] (name 'text'): angular_damping must be a finite number, got 'lots'");
 }
 
+TEST(SceneParams, DragIsReadAndChecked) {
+  XmlRpcValue dragged = Dumbbell("dragged");
+  dragged["drag"]["linear"] = Vector(0.1, 0.2, 0.3);
+  dragged["drag"]["angular"]["quadratic"] = Vector(0.0, 0.5, 0.0);
+  const std::vector<SceneBody> scene_bodies = ParseBodies(List({Dumbbell("plain"), dragged}));
+  ASSERT_EQ(scene_bodies.size(), 2u);
+  EXPECT_FALSE(scene_bodies[0].def.properties.drag.any());
+  const rigid_body_sim::core::Drag& drag = scene_bodies[1].def.properties.drag;
+  EXPECT_EQ(drag.linear_Nspm, Eigen::Vector3d(0.1, 0.2, 0.3));
+  EXPECT_EQ(drag.quadratic_Ns2pm2, Eigen::Vector3d::Zero());
+  EXPECT_EQ(drag.angular_linear_Nms, Eigen::Vector3d::Zero());
+  EXPECT_EQ(drag.angular_quadratic_Nms2, Eigen::Vector3d(0.0, 0.5, 0.0));
+
+  XmlRpcValue negative = Dumbbell("negative");
+  negative["drag"]["quadratic"] = Vector(0.0, -1.0, 0.0);
+  EXPECT_EQ(ErrorOf(List({negative})),
+            "bodies[0] (name 'negative'): drag.quadratic must be 3 finite numbers >= 0 "
+            "[N s^2/m^2], got -1");
+  XmlRpcValue unknown = Dumbbell("unknown");
+  unknown["drag"]["angular"]["cubic"] = Vector(1.0, 1.0, 1.0);
+  EXPECT_EQ(ErrorOf(List({unknown})),
+            "bodies[0] (name 'unknown'): drag.angular: unknown key 'cubic' (known here: linear, "
+            "quadratic)");
+  XmlRpcValue scalar = Dumbbell("scalar");
+  scalar["drag"] = 0.5;
+  EXPECT_EQ(ErrorOf(List({scalar})),
+            "bodies[0] (name 'scalar'): drag must be a dictionary, got 0.5");
+}
+
 TEST(SceneParams, ANamespaceIsAGraphNameNoOtherBodyResolvesTo) {
   XmlRpcValue uav = Dumbbell("uav");
   uav["namespace"] = "/fleet/uav1";

@@ -33,8 +33,13 @@ void CheckIntegratorName(const std::string& name);       // IntegratorTable()
 void CheckGravity(const Eigen::Vector3d& gravity_mps2);  // finite
 void CheckWrenchTimeout(double timeout_s);               // finite, >= 0
 
+// A finite mean, gust standard deviations finite and >= 0, a finite
+// correlation time > 0.
+void CheckWindDef(const WindDef& def);
+
 // What a World needs: a known integrator, dt > 0, threads >= 1, a finite
-// gravity, a finite wrench timeout >= 0, max_substeps >= 1.
+// gravity, a finite wrench timeout >= 0, max_substeps >= 1, a wind that
+// CheckWindDef accepts.
 void CheckWorldDef(const WorldDef& def);
 
 // The scene's rules for the name of body `index`, which names a TF frame and
@@ -42,9 +47,9 @@ void CheckWorldDef(const WorldDef& def);
 // digits or '_'. The World itself only needs a name (CheckBodyDef).
 void CheckBodyName(const std::string& name, std::size_t index);
 
-// A finite gravity scale and damping rates that are finite and >= 0; the
-// error names the key without the entry ("linear_damping must be a finite
-// number >= 0 [1/s], got -1").
+// A finite gravity scale, damping rates and drag coefficients that are
+// finite and >= 0; the error names the key without the entry
+// ("linear_damping must be a finite number >= 0 [1/s], got -1").
 void CheckBodyProperties(const BodyProperties& properties);
 
 // Who already has a frame name in a world: body `index` (its name) or one of

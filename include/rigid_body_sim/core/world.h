@@ -22,6 +22,7 @@
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/step_record.h"
+#include "rigid_body_sim/core/wind.h"
 #include "rigid_body_sim/core/world_def.h"
 #include "rigid_body_sim/core/wrench_table.h"
 
@@ -83,7 +84,9 @@ class World {
 
   // Advances every body from t_n to t_(n+1) with the wrenches active at t_n,
   // the mean thrusts of the step (ActuatorTable) and gravity, in SubstepsFor
-  // substeps. A body whose state would break a
+  // substeps, and a body with drag by its drag in the wind of t_n over dt/2
+  // before and after that (doc/physics.md, "Drag and wind"); then the wind
+  // moves on to t_(n+1). A body whose state would break a
   // CheckState bound, or that needs more than max_substeps, keeps its last
   // good state and is frozen from then on; the others go on. This is the
   // only place that freezes a body. With options().threads > 1 the blocks of
@@ -97,7 +100,8 @@ class World {
   std::uint32_t last_step_substeps_max() const { return last_step_substeps_max_; }
 
   // Every body back to its initial state, wrenches and thrusters cleared,
-  // faults cleared; time goes on.
+  // faults cleared, the wind's gusts back to their lattice step 0 (so they
+  // repeat); time goes on.
   void Reset();
   // Appends a body that moves from `initial_state` at the next step; its
   // initial state is also what Reset brings it back to. Throws
@@ -125,7 +129,12 @@ class World {
   void SetGravity(const Eigen::Vector3d& gravity_mps2);  // finite
   // Applies to the wrenches already held; >= 0, 0: held until replaced.
   void SetWrenchTimeout(double timeout_s);
-  void SetIntegrator(const std::string& name);  // UnknownIntegratorMessage
+  void SetIntegrator(const std::string& name);                // UnknownIntegratorMessage
+  void SetWindVelocity(const Eigen::Vector3d& velocity_mps);  // the mean; finite
+
+  // The wind w = mean + gust [m/s, world axes] over the next step (at time()).
+  Eigen::Vector3d wind_mps() const { return wind_.velocity_mps(); }
+  const Wind& wind() const { return wind_; }
 
   // Why the body is frozen (kNone while it moves).
   BodyFault fault(std::size_t index) const { return bodies_.hot().faults[index]; }
@@ -191,6 +200,10 @@ class World {
   std::vector<BodyListener*> listeners_;
   WorldDef options_;
   std::unique_ptr<Integrator> integrator_;
+  Wind wind_;
+  // The indices of the bodies with drag, ascending: the only ones the drag
+  // flows visit.
+  std::vector<std::size_t> dragged_;
   WrenchTable wrenches_;
   ActuatorTable actuators_;
   // How a step is carried out, with the schemes' scratch and the threads

@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "rigid_body_sim/core/default_integrator.h"
+#include "rigid_body_sim/core/wind.h"
 
 namespace rigid_body_sim::core {
 
@@ -27,14 +28,16 @@ struct WorldDef {
   // takes contiguous blocks of them in turn. A body's step reads and writes
   // that body alone, so the states are the same for any count.
   std::size_t threads = 1;
+  WindDef wind;  // still air by default; only bodies with drag feel it
 };
 
 // What a World takes between steps (World::SetIntegrator, SetGravity,
-// SetWrenchTimeout), with WorldDef's defaults.
+// SetWrenchTimeout, SetWindVelocity), with WorldDef's defaults.
 struct RuntimeSettings {
   std::string integrator = WorldDef{}.integrator;
-  Eigen::Vector3d gravity_mps2 = WorldDef{}.gravity;      // at every COM, world axes
-  double wrench_timeout_s = WorldDef{}.wrench_timeout_s;  // 0: a wrench is held until replaced
+  Eigen::Vector3d gravity_mps2 = WorldDef{}.gravity;        // at every COM, world axes
+  double wrench_timeout_s = WorldDef{}.wrench_timeout_s;    // 0: a wrench is held until replaced
+  Eigen::Vector3d wind_mps = WorldDef{}.wind.velocity_mps;  // the wind's mean, world axes
 };
 
 }  // namespace rigid_body_sim::core

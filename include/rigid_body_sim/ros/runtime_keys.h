@@ -11,7 +11,7 @@
 
 namespace rigid_body_sim {
 
-// The World's keys (integrator, gravity_mps2, wrench_timeout_s) are the
+// The World's keys (integrator, gravity_mps2, wrench_timeout_s, wind_mps) are the
 // base's; the node's settings extend this struct, so that there is one copy
 // of them, the node's.
 struct RuntimeKeys : core::RuntimeSettings {
@@ -25,8 +25,9 @@ struct RuntimeKeys : core::RuntimeSettings {
 // keys alone without saying so.
 inline bool SameRuntimeKeys(const RuntimeKeys& a, const RuntimeKeys& b) {
   return a.integrator == b.integrator && a.gravity_mps2 == b.gravity_mps2 &&
-         a.wrench_timeout_s == b.wrench_timeout_s && a.real_time_factor == b.real_time_factor &&
-         a.publish_rate_hz == b.publish_rate_hz && a.publish_tf == b.publish_tf;
+         a.wrench_timeout_s == b.wrench_timeout_s && a.wind_mps == b.wind_mps &&
+         a.real_time_factor == b.real_time_factor && a.publish_rate_hz == b.publish_rate_hz &&
+         a.publish_tf == b.publish_tf;
 }
 
 // How an error names a key.

@@ -54,6 +54,9 @@ struct NodeSettings : RuntimeKeys {
   std::uint32_t max_substeps = core::WorldDef{}.max_substeps;
   // Threads that step the bodies in parallel blocks (extension).
   std::size_t threads = core::WorldDef{}.threads;
+  // ~wind: the gusts; its velocity is read into the runtime key wind_mps,
+  // which holds the mean in force.
+  core::WindDef wind;
   LockstepSettings lockstep;
   ShardSettings shard;
   // Directories under which ~spawn_body may read urdf.file (absolute paths;

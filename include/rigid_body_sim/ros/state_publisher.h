@@ -93,6 +93,7 @@ class StatePublisher : public core::BodyListener {
   CountedPublisher tf_;  // /tf as tf2_ros::TransformBroadcaster advertises it
   CountedPublisher bodies_;
   CountedPublisher particles_;
+  CountedPublisher wind_;  // ~wind, the world's wind at each published state
   std::vector<Eigen::Vector3d> particle_positions_;  // scratch for ~particles
 };
 
