@@ -2,7 +2,6 @@
 // form, clipping, the reaction couple, the wrench timeout, the stamp rules,
 // reset and clear, and the checks of their definitions.
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <string>
 #include <vector>
@@ -11,6 +10,7 @@
 
 #include "check_message.h"
 #include "rigid_body_sim/core/world.h"
+#include "test_bodies.h"
 
 namespace rigid_body_sim::core {
 namespace {
@@ -242,11 +242,11 @@ TEST(Thrusters, RunsRepeatBitForBit) {
     return world.state(0);
   };
   const BodyState a = run(), b = run();
-  EXPECT_EQ(std::memcmp(&a, &b, sizeof(BodyState)), 0);
+  EXPECT_TRUE(test::SameBits(a, b));
 }
 
 std::string DefMessage(const ThrusterDef& thruster, const ThrusterDef* second = nullptr) {
-  return test::MessageOf([&] {
+  return rigid_body_sim::test::MessageOf([&] {
     std::vector<BodyDef> bodies;
     bodies.push_back(ThrusterBody(thruster));
     if (second != nullptr) bodies[0].actuators.push_back(*second);
@@ -265,13 +265,13 @@ TEST(Thrusters, DefinitionsAreCheckedAndNamed) {
   bad.min_thrust_n = 9.0;
   EXPECT_EQ(DefMessage(bad), entry + "min_thrust (9) must be <= max_thrust (8)");
   bad = rotor;
-  bad.max_thrust_n = test::kNan;
+  bad.max_thrust_n = rigid_body_sim::test::kNan;
   EXPECT_EQ(DefMessage(bad), entry + "max_thrust must be a finite number, got nan");
   bad = rotor;
-  bad.min_thrust_n = -test::kInf;
+  bad.min_thrust_n = -rigid_body_sim::test::kInf;
   EXPECT_EQ(DefMessage(bad), entry + "min_thrust must be a finite number, got -inf");
   bad = rotor;
-  bad.torque_coefficient_m = test::kInf;
+  bad.torque_coefficient_m = rigid_body_sim::test::kInf;
   EXPECT_EQ(DefMessage(bad), entry + "torque_coefficient must be a finite number, got inf");
   bad = rotor;
   bad.time_constant_s = -0.01;
