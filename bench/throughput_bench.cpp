@@ -242,6 +242,95 @@ BENCHMARK_CAPTURE(BM_WorldStepLoaded, world_force, LoadKind::kWorldForce)->Arg(1
 BENCHMARK_CAPTURE(BM_WorldStepLoaded, body_force, LoadKind::kBodyForce)->Arg(1000);
 BENCHMARK_CAPTURE(BM_WorldStepLoaded, gravity, LoadKind::kGravity)->Arg(1000);
 
+// The plant a controller meets, on 1,000 tumbling boxes, default scheme:
+// each under one held body wrench (what a controller commanding an ideal
+// wrench costs), or each with four lagged thrusters at the corners of an X
+// (τ = 20 ms, reaction couples of alternating sign), commanded anew every
+// 10 steps as a 100 Hz controller of a 1 kHz simulation would, and
+// translational and angular drag.
+enum class PlantKind { kHeldBodyWrench, kThrustersAndDrag };
+
+BodyDef PlantBody(int index, PlantKind kind) {
+  BodyState start;
+  start.position = {0.01 * index, 0.0, 0.0};
+  start.angular_momentum = {0.001, 0.02, 0.001};
+  BodyProperties properties;
+  BodyFrames frames;
+  if (kind == PlantKind::kThrustersAndDrag) {
+    properties.drag.linear_Nspm = {0.1, 0.1, 0.2};
+    properties.drag.quadratic_Ns2pm2 = {0.02, 0.02, 0.05};
+    properties.drag.angular_linear_Nms = {0.001, 0.001, 0.002};
+    properties.drag.angular_quadratic_Nms2 = {0.0001, 0.0001, 0.0002};
+  }
+  BodyDef def(BodyModel("body" + std::to_string(index), MakeBox(1.0, {0.2, 0.3, 0.4}, 2)), start,
+              properties, frames);
+  if (kind == PlantKind::kThrustersAndDrag) {
+    const double corner_m = 0.1;
+    for (int k = 0; k < 4; ++k) {
+      const std::string name = "rotor_" + std::to_string(k);
+      const Eigen::Vector3d position((k & 1) != 0 ? corner_m : -corner_m,
+                                     (k & 2) != 0 ? corner_m : -corner_m, 0.0);
+      // Site names are unique in the world, as body names are.
+      const std::string site = "body" + std::to_string(index) + "_" + name + "_link";
+      def.frames.sites.push_back(Site{site, position, Eigen::Quaterniond::Identity()});
+      ThrusterDef rotor;
+      rotor.name = name;
+      rotor.site = site;
+      rotor.max_thrust_n = 8.0;
+      rotor.time_constant_s = 0.02;
+      rotor.torque_coefficient_m = (k == 0 || k == 3) ? 0.016 : -0.016;
+      def.actuators.push_back(rotor);
+    }
+  }
+  return def;
+}
+
+void BM_WorldStepPlant(benchmark::State& state, PlantKind kind) {
+  constexpr int kStepsPerCommand = 10;
+  const int bodies = static_cast<int>(state.range(0));
+  std::vector<BodyDef> defs;
+  for (int i = 0; i < bodies; ++i) defs.push_back(PlantBody(i, kind));
+  World world(WorldDef{}, std::move(defs));
+  if (kind == PlantKind::kHeldBodyWrench) {
+    for (int i = 0; i < bodies; ++i) {
+      BodyWrench push;
+      push.body = world.id(i);
+      push.axes = WrenchAxes::kBody;
+      push.force = {0.1, -0.2, 0.05};
+      push.couple = {0.001, 0.002, -0.001};
+      world.HoldBodyWrench(push);
+    }
+  }
+  // As TimeSteps: the states go back to the start every 1,000 steps, so that
+  // the pushes do not spin the boxes up into substeps.
+  constexpr std::size_t kStepsPerRestart = 1000;
+  const std::vector<BodyState> first = world.states();
+  std::size_t steps = 0;
+  for (auto _ : state) {
+    if (steps % kStepsPerRestart == kStepsPerRestart - 1) {
+      state.PauseTiming();
+      for (int i = 0; i < bodies; ++i) world.SetBodyState(world.id(i), first[i]);
+      state.ResumeTiming();
+    }
+    if (kind == PlantKind::kThrustersAndDrag && steps % kStepsPerCommand == 0) {
+      state.PauseTiming();
+      const double command_n = (steps / kStepsPerCommand) % 2 == 0 ? 2.0 : 2.5;
+      for (int i = 0; i < bodies; ++i) {
+        for (std::size_t k = 0; k < 4; ++k) {
+          world.HoldActuatorCommand(world.id(i), k, command_n, world.time());
+        }
+      }
+      state.ResumeTiming();
+    }
+    world.Step();
+    benchmark::ClobberMemory();
+    ++steps;
+  }
+  ReportPerBodyStep(bodies, &state);
+}
+BENCHMARK_CAPTURE(BM_WorldStepPlant, held_body_wrench, PlantKind::kHeldBodyWrench)->Arg(1000);
+BENCHMARK_CAPTURE(BM_WorldStepPlant, thrusters_and_drag, PlantKind::kThrustersAndDrag)->Arg(1000);
+
 // 100,000 tumbling boxes, torque-free or each pushed at one particle (half in
 // world, half in body axes), stepped by 1 and by 2 threads (WorldDef::
 // threads). The counter is wall-clock time; the CPU column is the whole
