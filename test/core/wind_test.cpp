@@ -1,5 +1,5 @@
 // The wind's Ornstein–Uhlenbeck gusts on the step lattice: repeatable bit
-// for bit from the seed, stationary from the first step, with the standard
+// for bit from its generator key, stationary from the first step, with the standard
 // deviation and lag-1 autocorrelation of the process within bounds derived
 // from the sample size.
 #include <cmath>

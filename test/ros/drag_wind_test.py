@@ -8,7 +8,7 @@ started paused, rate 100 Hz):
   step, n * 16 eps of v0 bounds them) and v_y = v_z = 0 exactly, whatever
   the gusts along y and z do;
 - ~wind after each ~step 1: the same series bit for bit in both nodes (the
-  gusts are a function of the seed and the step), x exactly the mean (no
+  gusts are a function of their key and the step), x exactly the mean (no
   gust along x), y and z moving;
 - wind_x reconfigured: from the next published state on, x is the new mean
   and y, z go on as the twin's;
