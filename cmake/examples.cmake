@@ -9,3 +9,18 @@ foreach(_example quadrotor_controller hold_controller step_client)
 endforeach()
 install(TARGETS quadrotor_controller hold_controller step_client
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+
+# The quadrotor's mixer: thrust and torques to its rotors' thrusts.
+add_library(rotor_mixer STATIC src/examples/rotor_mixer.cpp)
+target_include_directories(rotor_mixer SYSTEM PUBLIC ${EIGEN3_INCLUDE_DIR})
+target_link_libraries(quadrotor_controller rotor_mixer)
+
+if(CATKIN_ENABLE_TESTING)
+  catkin_add_gtest(rotor_mixer_test test/examples/rotor_mixer_test.cpp)
+  target_include_directories(rotor_mixer_test PRIVATE src/examples)
+  target_link_libraries(rotor_mixer_test rotor_mixer gtest_main)
+endif()
+
+# rviz arrows for thrusters (launch/quadrotor.launch with rviz:=true).
+catkin_install_python(PROGRAMS scripts/thrust_markers.py
+  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
