@@ -21,6 +21,7 @@ if(CATKIN_ENABLE_TESTING)
   target_link_libraries(rotor_mixer_test rotor_mixer gtest_main)
 endif()
 
-# rviz arrows for thrusters (launch/quadrotor.launch with rviz:=true).
-catkin_install_python(PROGRAMS scripts/thrust_markers.py
+# rviz arrows for thrusters (launch/quadrotor.launch with rviz:=true); in
+# the devel space rosrun and roslaunch find it in scripts/.
+install(PROGRAMS scripts/thrust_markers.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

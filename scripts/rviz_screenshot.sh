@@ -11,7 +11,7 @@
 #   arrows to draw while every body stays in view;
 # - quadrotor: config/quadrotor.rviz on launch/quadrotor.launch, run from
 #   rest once rviz is up and paused after 4 s of simulation time, hovering,
-#   with its odometry trail from the take-off.
+#   with its odometry trail from the take-off and its rotors' thrust arrows.
 # Runs on its own master port (RBS_SCREENSHOT_PORT, default 11399) so that it
 # leaves any running simulation alone.
 set -euo pipefail
@@ -73,6 +73,12 @@ EOF
 rosrun rviz rviz -d "$tmp/screenshot.rviz" --fullscreen __name:=rviz >"$tmp/rviz.log" 2>&1 &
 pids+=($!)
 wait_for_service /rigid_body_sim/step
+if [ "$scene" = quadrotor ]; then
+  # The rotors' thrust arrows, as quadrotor.launch draws them with rviz:=true.
+  /usr/bin/python3 "$repo/scripts/thrust_markers.py" __name:=thrust_markers \
+    _actuator_states:=/rigid_body_sim/base_link/actuator_states >"$tmp/markers.log" 2>&1 &
+  pids+=($!)
+fi
 wait_for_service /rviz/load_config   # advertised once the window is shown
 sleep 3                              # rviz's first frames under software rendering
 
