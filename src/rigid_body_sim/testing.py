@@ -24,7 +24,7 @@ from diagnostic_msgs.msg import DiagnosticArray
 from geometry_msgs.msg import Point, Pose, Quaternion, Twist, Vector3, Wrench
 from rigid_body_sim.msg import BodyStateArray
 from rigid_body_sim.msg import BodyWrench as BodyWrenchMsg
-from rigid_body_sim.msg import LockstepAnswer, ParticleWrench
+from rigid_body_sim.msg import ActuatorCommand, LockstepAnswer, ParticleWrench
 from rigid_body_sim.srv import (ApplyBodyWrench, ClearBodyWrenches, DeleteBody,
                                 SetBodyState, SpawnBody, StepWithWrenches)
 from std_srvs.srv import Empty, SetBool
@@ -301,10 +301,11 @@ class LockstepController(object):
     stamp)` gets each ~bodies message's states (body name -> BodyState) and
     its stamp and returns what to apply (an empty list or None: nothing):
     ParticleWrench messages (see particle_wrench()), held as on
-    ~particle_wrenches, and BodyWrench tuples (see body_wrench(), at the
-    origin of their frame), each the command of one cycle. Both go in one
-    LockstepAnswer on ~lockstep_answers, held before the next step, so a run
-    repeats bit for bit. The node holds a body wrench as on the body's wrench
+    ~particle_wrenches, BodyWrench tuples (see body_wrench(), at the origin
+    of their frame), each the command of one cycle, and ActuatorCommand
+    messages (rigid_body_sim.msg), held as on the body's actuators topic.
+    All go in one LockstepAnswer on ~lockstep_answers, held before the next
+    step, so a run repeats bit for bit. The node holds a body wrench as on the body's wrench
     topic, until the next one for that body: a body named in one answer and
     not in the next gets a zero wrench there, and an answer that comes after
     the node's ~lockstep_timeout leaves the previous command acting meanwhile.
@@ -335,6 +336,8 @@ class LockstepController(object):
         for item in self._control(to_states(msg), msg.header.stamp) or []:
             if isinstance(item, BodyWrench):
                 answer.body_wrenches.append(_body_wrench_msg(item))
+            elif isinstance(item, ActuatorCommand):
+                answer.actuators.append(item)
             else:
                 answer.wrenches.append(item)
         pushed = [entry.body for entry in answer.body_wrenches]

@@ -17,7 +17,8 @@ orientation turns body x, y, z into world y, z, x exactly):
   exactly, on the time lattice; sim_time is its to_sec();
 - the client snippets of README.md and doc/testing.md run as written;
 - a body wrench in a LockstepController's answer acts on exactly the steps
-  up to the next cycle.
+  up to the next cycle; an actuator command in one is held: the puck's jet
+  (no lag, along world z) pushes on through the cycles after it.
 """
 import os
 import re
@@ -30,6 +31,7 @@ import numpy as np
 import rospkg
 import rospy
 import rostest
+from rigid_body_sim.msg import ActuatorCommand
 from rigid_body_sim.testing import (LockstepController, SimClient, body_wrench, particle_wrench,
                                     state_hash)
 
@@ -304,6 +306,32 @@ class Client(unittest.TestCase):
         self.assertAlmostEqual(momentum[start + LOCKSTEP_CYCLE_NS] - momentum[start], 3.0 * 10 * 1e-3,
                                delta=1e-15)
         self.assertEqual(momentum[start + 2 * LOCKSTEP_CYCLE_NS], momentum[start + LOCKSTEP_CYCLE_NS])
+
+    def test_an_actuator_command_in_a_lockstep_answer_is_held(self):
+        momentum = {}  # stamp [ns] -> lockstep_sim's puck's p_z
+        commanded_at = []
+
+        def control(states, stamp):
+            momentum[stamp.to_nsec()] = states['puck'].linear_momentum[2]
+            if not commanded_at and len(momentum) >= 3:
+                commanded_at.append(stamp.to_nsec())
+                return [ActuatorCommand(body='puck', names=['jet'], commands=[2.0])]
+            return []
+
+        controller = LockstepController(control, LOCKSTEP_NODE)
+        deadline = time.monotonic() + 20.0
+        while time.monotonic() < deadline and not (commanded_at and
+                                                    commanded_at[0] + 2 * LOCKSTEP_CYCLE_NS in momentum):
+            time.sleep(0.05)
+        controller.stop()
+        self.assertTrue(commanded_at, 'no cycle reached the controller')
+        start = commanded_at[0]
+        self.assertIn(start + 2 * LOCKSTEP_CYCLE_NS, momentum, 'the cycles after the command did not come')
+        # 2 N on the 10 steps of that cycle and, held, on the next 10.
+        for cycle in (1, 2):
+            self.assertAlmostEqual(momentum[start + cycle * LOCKSTEP_CYCLE_NS] -
+                                   momentum[start + (cycle - 1) * LOCKSTEP_CYCLE_NS], 2.0 * 10 * 1e-3,
+                                   delta=1e-15)
 
 
 if __name__ == '__main__':
