@@ -18,6 +18,7 @@ add_library(rigid_body_sim_ros
   src/ros/scene_settings.cpp
   src/ros/scene_bodies.cpp
   src/ros/body_graph_table.cpp
+  src/ros/scene_map_list.cpp
   src/ros/scene_actuators.cpp
   src/ros/scene_frames.cpp
   src/ros/scene_inertial.cpp

@@ -1,11 +1,11 @@
 #include "rigid_body_sim/ros/scene_actuators.h"
 
-#include <set>
 #include <string>
 
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
+#include "rigid_body_sim/ros/scene_map_list.h"
 
 namespace rigid_body_sim {
 
@@ -33,44 +33,26 @@ std::string ReadName(const XmlRpcValue& entry, const char* member, const std::st
 }  // namespace
 
 std::vector<core::ThrusterDef> ReadActuators(const XmlRpcValue& value) {
-  if (value.getType() != XmlRpcValue::TypeArray) {
-    throw SceneError("actuators must be a list of {name, site, max_thrust, ...}, got " +
-                     Describe(value));
-  }
-  if (static_cast<std::size_t>(value.size()) > kMaxActuatorsPerBody) {
-    throw SceneError("actuators has " + std::to_string(value.size()) + " entries, at most " +
-                     std::to_string(kMaxActuatorsPerBody) + " are allowed");
-  }
-  static const std::set<std::string> kKeys = {"name",       "site",          "max_thrust",
-                                              "min_thrust", "time_constant", "torque_coefficient"};
   std::vector<core::ThrusterDef> thrusters;
-  for (int k = 0; k < value.size(); ++k) {
-    const std::string key = "actuators[" + std::to_string(k) + "]";
-    const XmlRpcValue& entry = value[k];
-    if (entry.getType() != XmlRpcValue::TypeStruct) {
-      throw SceneError(key + " must be a map {name, site, max_thrust, ...}, got " +
-                       Describe(entry));
-    }
-    for (const auto& member : entry) {
-      if (kKeys.count(member.first) == 0) {
-        throw SceneError(key + " has unknown key '" + member.first +
-                         "' (known: name, site, max_thrust, min_thrust, time_constant, "
-                         "torque_coefficient)");
-      }
-    }
-    core::ThrusterDef thruster;
-    thruster.name = ReadName(entry, "name", key + ".name");
-    thruster.site = ReadName(entry, "site", key + ".site");
-    if (!entry.hasMember("max_thrust")) throw SceneError(key + ".max_thrust is missing");
-    thruster.max_thrust_n = ReadFiniteNumber(entry["max_thrust"], key + ".max_thrust");
-    const auto optional = [&entry, &key](const char* name) {
-      return entry.hasMember(name) ? ReadFiniteNumber(entry[name], key + "." + name) : 0.0;
-    };
-    thruster.min_thrust_n = optional("min_thrust");
-    thruster.time_constant_s = optional("time_constant");
-    thruster.torque_coefficient_m = optional("torque_coefficient");
-    thrusters.push_back(std::move(thruster));
-  }
+  ReadMapList(value, "actuators", "{name, site, max_thrust, ...}", kMaxActuatorsPerBody,
+              {"name", "site", "max_thrust", "min_thrust", "time_constant", "torque_coefficient"},
+              [&thrusters](const XmlRpcValue& entry, const std::string& key) {
+                core::ThrusterDef thruster;
+                thruster.name = ReadName(entry, "name", key + ".name");
+                thruster.site = ReadName(entry, "site", key + ".site");
+                if (!entry.hasMember("max_thrust")) {
+                  throw SceneError(key + ".max_thrust is missing");
+                }
+                thruster.max_thrust_n = ReadFiniteNumber(entry["max_thrust"], key + ".max_thrust");
+                const auto optional = [&entry, &key](const char* name) {
+                  return entry.hasMember(name) ? ReadFiniteNumber(entry[name], key + "." + name)
+                                               : 0.0;
+                };
+                thruster.min_thrust_n = optional("min_thrust");
+                thruster.time_constant_s = optional("time_constant");
+                thruster.torque_coefficient_m = optional("torque_coefficient");
+                thrusters.push_back(std::move(thruster));
+              });
   return thrusters;
 }
 

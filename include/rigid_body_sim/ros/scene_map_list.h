@@ -1,0 +1,25 @@
+// A scene key whose value is a list of maps (a body's `sites`, `actuators`):
+// the checks every such list shares, with the same messages for each.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <xmlrpcpp/XmlRpcValue.h>
+
+namespace rigid_body_sim {
+
+// Calls read(entry, "<list_key>[k]") for each entry of `value`, in order,
+// once `value` is a list of at most `max_entries` entries, and that entry a
+// map whose members are among `known_keys`. Throws SceneError otherwise:
+// "<list_key> must be a list of <shape>, got ...", "<list_key> has n
+// entries, at most m are allowed", "<list_key>[k] must be a map <shape>, got
+// ...", "<list_key>[k] has unknown key 'x' (known: <known_keys>)".
+void ReadMapList(const XmlRpc::XmlRpcValue& value, const std::string& list_key,
+                 const std::string& shape, std::size_t max_entries,
+                 const std::vector<std::string>& known_keys,
+                 const std::function<void(const XmlRpc::XmlRpcValue&, const std::string&)>& read);
+
+}  // namespace rigid_body_sim
