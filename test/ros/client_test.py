@@ -77,6 +77,16 @@ def python_blocks(text):
     return re.findall(r'(?ms)^```python\n(.*?)^```', text)
 
 
+def answer_until(control, done, timeout_s=20.0):
+    """Answers lockstep_sim's cycles with a LockstepController on `control`
+    until done() or timeout_s of wall time."""
+    controller = LockstepController(control, LOCKSTEP_NODE)
+    deadline = time.monotonic() + timeout_s
+    while time.monotonic() < deadline and not done():
+        time.sleep(0.05)
+    controller.stop()
+
+
 class Client(unittest.TestCase):
     @classmethod
     def setUpClass(cls):
@@ -293,12 +303,7 @@ class Client(unittest.TestCase):
                 return [body_wrench('puck', force=(0.0, 3.0, 0.0))]
             return []
 
-        controller = LockstepController(control, LOCKSTEP_NODE)
-        deadline = time.monotonic() + 20.0
-        while time.monotonic() < deadline and not (pushed_at and
-                                                    pushed_at[0] + 2 * LOCKSTEP_CYCLE_NS in momentum):
-            time.sleep(0.05)
-        controller.stop()
+        answer_until(control, lambda: pushed_at and pushed_at[0] + 2 * LOCKSTEP_CYCLE_NS in momentum)
         self.assertTrue(pushed_at, 'no cycle reached the controller')
         start = pushed_at[0]
         self.assertIn(start + 2 * LOCKSTEP_CYCLE_NS, momentum, 'the cycles after the push did not come')
@@ -318,12 +323,7 @@ class Client(unittest.TestCase):
                 return [ActuatorCommand(body='puck', names=['jet'], commands=[2.0])]
             return []
 
-        controller = LockstepController(control, LOCKSTEP_NODE)
-        deadline = time.monotonic() + 20.0
-        while time.monotonic() < deadline and not (commanded_at and
-                                                    commanded_at[0] + 2 * LOCKSTEP_CYCLE_NS in momentum):
-            time.sleep(0.05)
-        controller.stop()
+        answer_until(control, lambda: commanded_at and commanded_at[0] + 2 * LOCKSTEP_CYCLE_NS in momentum)
         self.assertTrue(commanded_at, 'no cycle reached the controller')
         start = commanded_at[0]
         self.assertIn(start + 2 * LOCKSTEP_CYCLE_NS, momentum, 'the cycles after the command did not come')
