@@ -65,6 +65,15 @@ void HeldLoads::AddBodyCouple(const Eigen::Vector3d& couple) {
   has_body_axes_ = true;
 }
 
+void HeldLoads::RestoreBodyAxesSum(const BodyAxesSum& sum) {
+  torque_bound_ = -1.0;
+  has_principal_parts_ = false;
+  force_body_ = sum.force_body;
+  torque_body_ = sum.torque_body;
+  has_torque_ = sum.has_torque;
+  has_body_axes_ = sum.has_body_axes;
+}
+
 void HeldLoads::AddCentralForce(const Eigen::Vector3d& force) {
   has_principal_parts_ = false;  // their stamp covers F_W too
   force_world_ += force;
