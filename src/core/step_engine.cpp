@@ -42,7 +42,7 @@ StepEngine::StepEngine(std::size_t threads) : team_(threads) {
 StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
   hot_ = &bodies->hot();
   context_ = context;
-  const bool has_drag = context.dragged != nullptr && !context.dragged->empty();
+  const bool has_drag = context.drag != nullptr;
   if (has_drag) PrepareDragFlows(*bodies);
   const std::size_t size = bodies->size();
   if (context.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
@@ -56,7 +56,18 @@ StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
   auto step_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
     StepBlock(begin, end, &workspace_.shares[member]);
   };
-  team_.ForBlocks(size, kBodiesPerBlock, step_block);
+  // Drag over dt/2 before and after the scheme's step; a scene without drag
+  // takes a loop that does not ask.
+  auto step_dragged_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
+    AdvanceDragged(begin, end);
+    StepBlock(begin, end, &workspace_.shares[member]);
+    AdvanceDragged(begin, end);
+  };
+  if (has_drag) {
+    team_.ForBlocks(size, kBodiesPerBlock, step_dragged_block);
+  } else {
+    team_.ForBlocks(size, kBodiesPerBlock, step_block);
+  }
   StepCounts counts;
   for (const Share& share : workspace_.shares) {
     counts.frozen += share.counts.frozen;
@@ -101,7 +112,6 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   // Whether every body in the free and the loaded batch is within PlanStep's
   // cheap bound (BodyBatch::within_one_step_bound).
   bool free_within_bound = true, loaded_within_bound = true;
-  AdvanceDragged(begin, end);
   for (std::size_t i = begin; i < end; ++i) {
     if (hot.faults[i] != BodyFault::kNone) continue;
     const BodyModel& model = hot.models[i];
@@ -153,11 +163,10 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
   StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
   for (Share::SubstepBatch& batch : share->substep_batches) StepSubstepBatch(&batch, share);
-  AdvanceDragged(begin, end);
 }
 
 void StepEngine::PrepareDragFlows(const BodyStore& bodies) {
-  const std::vector<std::size_t>& dragged = *context_.dragged;
+  const std::vector<std::size_t>& dragged = *context_.drag->bodies;
   if (drag_flows_.size() == dragged.size() && drag_flows_dt_s_ == context_.dt_s) return;
   drag_flows_.clear();
   drag_flows_.reserve(dragged.size());
@@ -169,14 +178,14 @@ void StepEngine::PrepareDragFlows(const BodyStore& bodies) {
 }
 
 void StepEngine::AdvanceDragged(std::size_t begin, std::size_t end) const {
-  if (context_.dragged == nullptr) return;
-  const std::vector<std::size_t>& dragged = *context_.dragged;
+  const std::vector<std::size_t>& dragged = *context_.drag->bodies;
+  const Eigen::Vector3d& wind_mps = context_.drag->wind_mps;
   for (auto it = std::lower_bound(dragged.begin(), dragged.end(), begin);
        it != dragged.end() && *it < end; ++it) {
     const std::size_t i = *it;
     if (hot_->faults[i] != BodyFault::kNone) continue;
     const std::size_t position = static_cast<std::size_t>(it - dragged.begin());
-    drag_flows_[position].Advance(hot_->models[i], context_.wind_mps, &hot_->states[i]);
+    drag_flows_[position].Advance(hot_->models[i], wind_mps, &hot_->states[i]);
   }
 }
 
@@ -293,7 +302,8 @@ void StepEngine::RecordStepStart(BodyStore* bodies) const {
     record.wrench.force -= properties.linear_damping_per_s * state.linear_momentum;
     record.wrench.torque -= properties.angular_damping_per_s * state.angular_momentum;
     if (properties.drag.any()) {
-      const Wrench drag = DragWrench(properties.drag, hot.models[i], state, context_.wind_mps);
+      const Wrench drag =
+          DragWrench(properties.drag, hot.models[i], state, context_.drag->wind_mps);
       record.wrench.force += drag.force;
       record.wrench.torque += drag.torque;
     }

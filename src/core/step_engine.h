@@ -36,6 +36,13 @@ namespace rigid_body_sim::core {
 
 struct BodyBatch;
 
+// The bodies with drag (BodyProperties::drag) and the wind they move in over
+// a step.
+struct StepDrag {
+  const std::vector<std::size_t>* bodies = nullptr;    // their indices, ascending
+  Eigen::Vector3d wind_mps = Eigen::Vector3d::Zero();  // world axes
+};
+
 // The World's settings for one step.
 struct StepContext {
   const Integrator* integrator = nullptr;
@@ -45,10 +52,8 @@ struct StepContext {
   bool loads_kept = false;
   // Fill every body's StepRecord in the store (World::RecordNextStep).
   bool record = false;
-  // The indices of the bodies with drag (BodyProperties::drag), ascending,
-  // and the wind they move in over the step [m/s, world axes].
-  const std::vector<std::size_t>* dragged = nullptr;
-  Eigen::Vector3d wind_mps = Eigen::Vector3d::Zero();
+  // Null when no body has drag.
+  const StepDrag* drag = nullptr;
 };
 
 // What one step counted, for the World's totals.
@@ -120,8 +125,8 @@ class StepEngine {
     std::vector<ExactFreeFlow> free_flows;
   };
 
-  // Steps the bodies of indices [begin, end) that move, adding to `share`'s
-  // counts; a body with drag takes its drag flow over dt/2 before and after.
+  // Steps the bodies of indices [begin, end) that move by the scheme, adding
+  // to `share`'s counts.
   void StepBlock(std::size_t begin, std::size_t end, Share* share);
   using BatchStep = void (Integrator::*)(const BodyBatch& batch, double dt_s) const;
   // Steps `bodies` by dt through `step` (StepFree or StepLoaded), which
@@ -149,7 +154,7 @@ class StepEngine {
   // for the scheme.
   BodyBatch Batch(const std::vector<std::size_t>& indices, LaneCache* cache);
   // The drag flow over dt/2 of the bodies with drag in indices [begin, end)
-  // that are not frozen.
+  // that are not frozen; context_.drag not null.
   void AdvanceDragged(std::size_t begin, std::size_t end) const;
   // drag_flows_ for the step's bodies with drag and dt, if they are not.
   void PrepareDragFlows(const BodyStore& bodies);
@@ -162,8 +167,8 @@ class StepEngine {
   // The step under way (Step): its bodies' columns and its settings.
   BodyHotColumns* hot_ = nullptr;
   StepContext context_;
-  // The drag flow over dt/2 of each body of StepContext::dragged, in its
-  // order; empty when the bodies with drag changed since they were made.
+  // The drag flow over dt/2 of each body of StepDrag::bodies, in its order;
+  // empty when the bodies with drag changed since they were made.
   std::vector<DragFlow> drag_flows_;
   double drag_flows_dt_s_ = 0.0;
 };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -124,9 +125,10 @@ void World::Step() {
   }
   last_step_recorded_ = record_next_step_;
   record_next_step_ = false;
-  const StepContext context{
-      integrator_.get(),   options_.dt_s, options_.max_substeps, !loads_changed && !thrust_changed,
-      last_step_recorded_, &dragged_,     wind_.velocity_mps()};
+  StepContext context{integrator_.get(), options_.dt_s, options_.max_substeps,
+                      !loads_changed && !thrust_changed, last_step_recorded_};
+  std::optional<StepDrag> drag;
+  if (!dragged_.empty()) context.drag = &drag.emplace(StepDrag{&dragged_, wind_.velocity_mps()});
   const StepCounts counts = engine_->Step(&bodies_, context);
   wind_.Advance();
   frozen_count_ += counts.frozen;
