@@ -101,6 +101,9 @@ bool ActuatorTable::StartStep(double t_s, double timeout_s, double tolerance_s) 
   bool changed = false;
   for (ActuatedBody& body : bodies_) {
     body.thrust_changed = false;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+    bool thrusts = false;
     for (Thruster& thruster : body.thrusters) {
       // The comparisons of WrenchTable::Reduce, so that a command and a
       // wrench with the same stamp start and expire at the same step.
@@ -113,18 +116,15 @@ bool ActuatorTable::StartStep(double t_s, double timeout_s, double tolerance_s) 
       body.thrust_changed = body.thrust_changed || mean_n != thruster.mean_thrust_n;
       thruster.mean_thrust_n = mean_n;
       thruster.thrust_n = thruster.lag.End(thruster.thrust_n, command_n);
+      if (mean_n == 0.0) continue;
+      force += mean_n * thruster.axis;
+      torque += mean_n * thruster.torque_per_n;
+      thrusts = true;
     }
-    if (!body.thrust_changed) continue;
-    changed = true;
-    body.force_n.setZero();
-    body.torque_nm.setZero();
-    body.thrusts = false;
-    for (const Thruster& thruster : body.thrusters) {
-      if (thruster.mean_thrust_n == 0.0) continue;
-      body.force_n += thruster.mean_thrust_n * thruster.axis;
-      body.torque_nm += thruster.mean_thrust_n * thruster.torque_per_n;
-      body.thrusts = true;
-    }
+    body.force_n = force;
+    body.torque_nm = torque;
+    body.thrusts = thrusts;
+    changed = changed || body.thrust_changed;
   }
   return changed;
 }
