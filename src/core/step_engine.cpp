@@ -35,6 +35,8 @@ StepEngine::StepEngine(std::size_t threads) : team_(threads) {
   for (Share& share : workspace_.shares) {
     share.free_batch.reserve(kBatch);
     share.loaded_batch.reserve(kBatch);
+    share.dragged.free_batch.reserve(kBatch);
+    share.dragged.loaded_batch.reserve(kBatch);
     share.substep_batches.reserve(kSubstepBatches);
   }
 }
@@ -50,17 +52,20 @@ StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
   for (Share& share : workspace_.shares) {
     share.counts = StepCounts{};
     share.lane_cache.StartStep(context.loads_kept);
-    // The drag flows write states between the scheme's steps.
-    if (has_drag) share.lane_cache.ForgetStates();
+    if (has_drag) {
+      share.dragged.lane_cache.StartStep(context.loads_kept);
+      // The drag flows wrote their bodies' states after the last step.
+      share.dragged.lane_cache.ForgetStates();
+    }
   }
   auto step_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
-    StepBlock(begin, end, &workspace_.shares[member]);
+    StepBlock<false>(begin, end, &workspace_.shares[member]);
   };
   // Drag over dt/2 before and after the scheme's step; a scene without drag
   // takes a loop that does not ask.
   auto step_dragged_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
     AdvanceDragged(begin, end);
-    StepBlock(begin, end, &workspace_.shares[member]);
+    StepBlock<true>(begin, end, &workspace_.shares[member]);
     AdvanceDragged(begin, end);
   };
   if (has_drag) {
@@ -78,7 +83,10 @@ StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
 }
 
 void StepEngine::OnStatesWritten() {
-  for (Share& share : workspace_.shares) share.lane_cache.ForgetStates();
+  for (Share& share : workspace_.shares) {
+    share.lane_cache.ForgetStates();
+    share.dragged.lane_cache.ForgetStates();
+  }
 }
 
 void StepEngine::OnBodyRemoved(std::size_t index) {
@@ -104,8 +112,33 @@ inline BodyBatch StepEngine::Batch(const std::vector<std::size_t>& indices, Lane
           cache};
 }
 
+// Inline: called for each body with drag, in the step loop.
+inline void StepEngine::BatchDragged(std::size_t index, bool loaded, bool within_one_step_bound,
+                                     Share* share) {
+  Share::DraggedBatches& dragged = share->dragged;
+  std::vector<std::size_t>& batch = loaded ? dragged.loaded_batch : dragged.free_batch;
+  bool& within_bound = loaded ? dragged.loaded_within_bound : dragged.free_within_bound;
+  batch.push_back(index);
+  within_bound = within_bound && within_one_step_bound;
+  if (batch.size() == kBatch) {
+    StepBatch(loaded ? &Integrator::StepLoaded : &Integrator::StepFree, &batch, within_bound,
+              &dragged.lane_cache, share);
+    within_bound = true;
+  }
+}
+
+template <bool kWithDrag>
 void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   BodyHotColumns& hot = *hot_;
+  // The next body with drag from i on (kWithDrag).
+  const std::size_t* next_dragged = nullptr;
+  const std::size_t* dragged_end = nullptr;
+  if constexpr (kWithDrag) {
+    const std::vector<std::size_t>& dragged = *context_.drag->bodies;
+    next_dragged = dragged.data() +
+                   (std::lower_bound(dragged.begin(), dragged.end(), begin) - dragged.begin());
+    dragged_end = dragged.data() + dragged.size();
+  }
   const Integrator& integrator = *context_.integrator;
   const double dt_s = context_.dt_s;
   const std::uint32_t max_substeps = context_.max_substeps;
@@ -128,18 +161,27 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
         break;
       }
       case StepClass::kBatched:
+        if constexpr (kWithDrag) {
+          while (next_dragged != dragged_end && *next_dragged < i) ++next_dragged;
+          if (next_dragged != dragged_end && *next_dragged == i) {
+            BatchDragged(i, load != nullptr, plan.within_one_step_bound, share);
+            break;
+          }
+        }
         if (load != nullptr) {
           share->loaded_batch.push_back(i);
           loaded_within_bound = loaded_within_bound && plan.within_one_step_bound;
           if (share->loaded_batch.size() == kBatch) {
-            StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
+            StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound,
+                      &share->lane_cache, share);
             loaded_within_bound = true;
           }
         } else {
           share->free_batch.push_back(i);
           free_within_bound = free_within_bound && plan.within_one_step_bound;
           if (share->free_batch.size() == kBatch) {
-            StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
+            StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound,
+                      &share->lane_cache, share);
             free_within_bound = true;
           }
         }
@@ -160,8 +202,19 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       }
     }
   }
-  StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
-  StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
+  StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, &share->lane_cache,
+            share);
+  StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, &share->lane_cache,
+            share);
+  if constexpr (kWithDrag) {
+    Share::DraggedBatches& dragged = share->dragged;
+    StepBatch(&Integrator::StepFree, &dragged.free_batch, dragged.free_within_bound,
+              &dragged.lane_cache, share);
+    StepBatch(&Integrator::StepLoaded, &dragged.loaded_batch, dragged.loaded_within_bound,
+              &dragged.lane_cache, share);
+    dragged.free_within_bound = true;
+    dragged.loaded_within_bound = true;
+  }
   for (Share::SubstepBatch& batch : share->substep_batches) StepSubstepBatch(&batch, share);
 }
 
@@ -190,9 +243,9 @@ void StepEngine::AdvanceDragged(std::size_t begin, std::size_t end) const {
 }
 
 void StepEngine::StepBatch(BatchStep step, std::vector<std::size_t>* bodies,
-                           bool within_one_step_bound, Share* share) {
+                           bool within_one_step_bound, LaneCache* cache, Share* share) {
   if (bodies->empty()) return;
-  BodyBatch batch = Batch(*bodies, &share->lane_cache);
+  BodyBatch batch = Batch(*bodies, cache);
   // The scheme writes a failing body's fault straight into the store's
   // column, where every body of the batch had none: that freezes it.
   const std::vector<BodyFault>& faults = hot_->faults;

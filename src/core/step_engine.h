@@ -112,6 +112,18 @@ class StepEngine {
     };
     std::vector<SubstepBatch> substep_batches;  // at most kSubstepBatches
     LaneCache lane_cache;
+    // Bodies with drag that take one step each, batched apart with a cache
+    // of their own: the drag flows write their states between the scheme's
+    // steps, so their lanes forget the states every step, and the other
+    // bodies' lanes need not.
+    struct DraggedBatches {
+      std::vector<std::size_t> free_batch;
+      std::vector<std::size_t> loaded_batch;
+      bool free_within_bound = true;  // as StepBlock's
+      bool loaded_within_bound = true;
+      LaneCache lane_cache;
+    };
+    DraggedBatches dragged;
     StepCounts counts;
   };
 
@@ -126,15 +138,20 @@ class StepEngine {
   };
 
   // Steps the bodies of indices [begin, end) that move by the scheme, adding
-  // to `share`'s counts.
+  // to `share`'s counts; `kWithDrag`: the step has bodies with drag, which
+  // take their own batches (Share::dragged).
+  template <bool kWithDrag>
   void StepBlock(std::size_t begin, std::size_t end, Share* share);
   using BatchStep = void (Integrator::*)(const BodyBatch& batch, double dt_s) const;
-  // Steps `bodies` by dt through `step` (StepFree or StepLoaded), which
-  // writes back only the states that pass their check and reports the
-  // others; freezes those, and empties `bodies`.
+  // Steps `bodies` by dt through `step` (StepFree or StepLoaded) with the
+  // lanes' `cache`, which writes back only the states that pass their check
+  // and reports the others; freezes those, and empties `bodies`.
   // `within_one_step_bound`: as BodyBatch's.
   void StepBatch(BatchStep step, std::vector<std::size_t>* bodies, bool within_one_step_bound,
-                 Share* share);
+                 LaneCache* cache, Share* share);
+  // Adds body `index` with drag, `loaded` or not, to its batch in
+  // `share->dragged`, stepping the batch when full.
+  void BatchDragged(std::size_t index, bool loaded, bool within_one_step_bound, Share* share);
   // Adds body `index` to the substep batch of its n and kind, stepping the
   // batch when full; false (and nothing done) when every batch is taken by
   // another n.
