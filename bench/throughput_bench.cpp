@@ -247,8 +247,10 @@ BENCHMARK_CAPTURE(BM_WorldStepLoaded, gravity, LoadKind::kGravity)->Arg(1000);
 // wrench costs), or each with four lagged thrusters at the corners of an X
 // (τ = 20 ms, reaction couples of alternating sign), commanded anew every
 // 10 steps as a 100 Hz controller of a 1 kHz simulation would, and
-// translational and angular drag.
-enum class PlantKind { kHeldBodyWrench, kThrustersAndDrag };
+// translational and angular drag; or each under the held body wrench with
+// the first body alone with that drag (what a scene's one body with drag
+// costs the others).
+enum class PlantKind { kHeldBodyWrench, kThrustersAndDrag, kHeldBodyWrenchBesideDrag };
 
 BodyDef PlantBody(int index, PlantKind kind) {
   BodyState start;
@@ -256,7 +258,8 @@ BodyDef PlantBody(int index, PlantKind kind) {
   start.angular_momentum = {0.001, 0.02, 0.001};
   BodyProperties properties;
   BodyFrames frames;
-  if (kind == PlantKind::kThrustersAndDrag) {
+  if (kind == PlantKind::kThrustersAndDrag ||
+      (kind == PlantKind::kHeldBodyWrenchBesideDrag && index == 0)) {
     properties.drag.linear_Nspm = {0.1, 0.1, 0.2};
     properties.drag.quadratic_Ns2pm2 = {0.02, 0.02, 0.05};
     properties.drag.angular_linear_Nms = {0.001, 0.001, 0.002};
@@ -291,7 +294,7 @@ void BM_WorldStepPlant(benchmark::State& state, PlantKind kind) {
   std::vector<BodyDef> defs;
   for (int i = 0; i < bodies; ++i) defs.push_back(PlantBody(i, kind));
   World world(WorldDef{}, std::move(defs));
-  if (kind == PlantKind::kHeldBodyWrench) {
+  if (kind != PlantKind::kThrustersAndDrag) {
     for (int i = 0; i < bodies; ++i) {
       BodyWrench push;
       push.body = world.id(i);
@@ -330,6 +333,9 @@ void BM_WorldStepPlant(benchmark::State& state, PlantKind kind) {
 }
 BENCHMARK_CAPTURE(BM_WorldStepPlant, held_body_wrench, PlantKind::kHeldBodyWrench)->Arg(1000);
 BENCHMARK_CAPTURE(BM_WorldStepPlant, thrusters_and_drag, PlantKind::kThrustersAndDrag)->Arg(1000);
+BENCHMARK_CAPTURE(BM_WorldStepPlant, held_body_wrench_beside_drag,
+                  PlantKind::kHeldBodyWrenchBesideDrag)
+    ->Arg(1000);
 
 // 100,000 tumbling boxes, torque-free or each pushed at one particle (half in
 // world, half in body axes), stepped by 1 and by 2 threads (WorldDef::

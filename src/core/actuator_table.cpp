@@ -7,11 +7,13 @@
 
 namespace rigid_body_sim::core {
 
-void ActuatorTable::AddBody(BodyId id, const BodyModel& model, const BodyFrames& frames,
-                            std::vector<ThrusterDef> thrusters, double step_s) {
+void ActuatorTable::AddBody(BodyId id, std::size_t index, const BodyModel& model,
+                            const BodyFrames& frames, std::vector<ThrusterDef> thrusters,
+                            double step_s) {
   if (thrusters.empty()) return;
   ActuatedBody body;
   body.id = id;
+  body.index = index;
   for (const ThrusterDef& def : thrusters) {
     const auto site = std::find_if(frames.sites.begin(), frames.sites.end(),
                                    [&def](const Site& s) { return s.name == def.site; });
@@ -31,15 +33,19 @@ void ActuatorTable::AddBody(BodyId id, const BodyModel& model, const BodyFrames&
   bodies_.push_back(std::move(body));
 }
 
-void ActuatorTable::RemoveBody(BodyId id) {
-  if (Find(id) == nullptr) return;
-  const std::size_t i = index_.at(id);
-  index_.Erase(id);
-  if (i + 1 != bodies_.size()) {
-    bodies_[i] = std::move(bodies_.back());
-    index_.at(bodies_[i].id) = i;
+void ActuatorTable::RemoveBody(BodyId id, std::size_t index) {
+  if (Find(id) != nullptr) {
+    const std::size_t i = index_.at(id);
+    index_.Erase(id);
+    if (i + 1 != bodies_.size()) {
+      bodies_[i] = std::move(bodies_.back());
+      index_.at(bodies_[i].id) = i;
+    }
+    bodies_.pop_back();
   }
-  bodies_.pop_back();
+  for (ActuatedBody& body : bodies_) {
+    if (body.index > index) --body.index;
+  }
 }
 
 ActuatorTable::ActuatedBody* ActuatorTable::Find(BodyId id) {
@@ -94,6 +100,10 @@ void ActuatorTable::ClearBody(BodyId id) {
 bool ActuatorTable::StartStep(double t_s, double timeout_s, double tolerance_s) {
   bool changed = false;
   for (ActuatedBody& body : bodies_) {
+    body.thrust_changed = false;
+    Eigen::Vector3d force = Eigen::Vector3d::Zero();
+    Eigen::Vector3d torque = Eigen::Vector3d::Zero();
+    bool thrusts = false;
     for (Thruster& thruster : body.thrusters) {
       // The comparisons of WrenchTable::Reduce, so that a command and a
       // wrench with the same stamp start and expire at the same step.
@@ -103,31 +113,45 @@ bool ActuatorTable::StartStep(double t_s, double timeout_s, double tolerance_s) 
       const double command_n =
           thruster.held && !(thruster.start_s > t_s + tolerance_s) ? thruster.command_n : 0.0;
       const double mean_n = thruster.lag.Mean(thruster.thrust_n, command_n);
-      changed = changed || mean_n != thruster.mean_thrust_n;
+      body.thrust_changed = body.thrust_changed || mean_n != thruster.mean_thrust_n;
       thruster.mean_thrust_n = mean_n;
       thruster.thrust_n = thruster.lag.End(thruster.thrust_n, command_n);
+      if (mean_n == 0.0) continue;
+      force += mean_n * thruster.axis;
+      torque += mean_n * thruster.torque_per_n;
+      thrusts = true;
     }
+    body.force_n = force;
+    body.torque_nm = torque;
+    body.thrusts = thrusts;
+    changed = changed || body.thrust_changed;
   }
   return changed;
 }
 
-void ActuatorTable::AddLoads(const BodyStore& store, std::vector<HeldLoads>* loads,
-                             std::vector<char>* loaded) const {
+void ActuatorTable::AddThrust(const ActuatedBody& body, HeldLoads* loads, char* loaded) {
+  if (!body.thrusts) return;
+  loads->AddBodyForce(body.force_n, Eigen::Vector3d::Zero());
+  loads->AddBodyCouple(body.torque_nm);
+  *loaded = 1;
+}
+
+void ActuatorTable::AddLoads(std::vector<HeldLoads>* loads, std::vector<char>* loaded) {
+  for (ActuatedBody& body : bodies_) {
+    HeldLoads& body_loads = (*loads)[body.index];
+    body.other_loads = body_loads.body_axes_sum();
+    body.other_loaded = (*loaded)[body.index] != 0;
+    AddThrust(body, &body_loads, &(*loaded)[body.index]);
+  }
+}
+
+void ActuatorTable::UpdateLoads(std::vector<HeldLoads>* loads, std::vector<char>* loaded) const {
   for (const ActuatedBody& body : bodies_) {
-    Eigen::Vector3d force = Eigen::Vector3d::Zero();
-    Eigen::Vector3d torque = Eigen::Vector3d::Zero();
-    bool thrusts = false;
-    for (const Thruster& thruster : body.thrusters) {
-      if (thruster.mean_thrust_n == 0.0) continue;
-      force += thruster.mean_thrust_n * thruster.axis;
-      torque += thruster.mean_thrust_n * thruster.torque_per_n;
-      thrusts = true;
-    }
-    if (!thrusts) continue;
-    const std::size_t index = store.CheckedIndex(body.id);
-    (*loads)[index].AddBodyForce(force, Eigen::Vector3d::Zero());
-    (*loads)[index].AddBodyCouple(torque);
-    (*loaded)[index] = 1;
+    if (!body.thrust_changed) continue;
+    HeldLoads& body_loads = (*loads)[body.index];
+    body_loads.RestoreBodyAxesSum(body.other_loads);
+    (*loaded)[body.index] = body.other_loaded ? 1 : 0;
+    AddThrust(body, &body_loads, &(*loaded)[body.index]);
   }
 }
 

@@ -72,13 +72,6 @@ DragFlow::AxisDecay DragFlow::Decay(const Eigen::Vector3d& a_per_s, const Eigen:
   return decay;
 }
 
-Eigen::Vector3d DragFlow::AxisDecay::Change(const Eigen::Vector3d& u) const {
-  // Linear alone: u (e^(−as) − 1), one product per axis.
-  if (!quadratic) return u.cwiseProduct(decay_minus_one);
-  return (u.array() * decay.array() / (1.0 + quadratic_time.array() * u.array().abs()) - u.array())
-      .matrix();
-}
-
 DragFlow::DragFlow(const Drag& drag, const BodyModel& model, double s)
     : drag_(drag),
       s_(s),

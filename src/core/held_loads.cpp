@@ -65,6 +65,15 @@ void HeldLoads::AddBodyCouple(const Eigen::Vector3d& couple) {
   has_body_axes_ = true;
 }
 
+void HeldLoads::RestoreBodyAxesSum(const BodyAxesSum& sum) {
+  torque_bound_ = -1.0;
+  has_principal_parts_ = false;
+  force_body_ = sum.force_body;
+  torque_body_ = sum.torque_body;
+  has_torque_ = sum.has_torque;
+  has_body_axes_ = sum.has_body_axes;
+}
+
 void HeldLoads::AddCentralForce(const Eigen::Vector3d& force) {
   has_principal_parts_ = false;  // their stamp covers F_W too
   force_world_ += force;
@@ -108,8 +117,10 @@ const HeldLoads::PrincipalParts& HeldLoads::NewPrincipalParts(
     const Eigen::Quaterniond& body_from_principal) const {
   const Eigen::Matrix3d r = body_from_principal.toRotationMatrix();
   const std::uint64_t stamp = last_principal_stamp.fetch_add(1, std::memory_order_relaxed) + 1;
-  principal_parts_ = {stamp, body_from_principal, r.transpose() * force_body_,
-                      r.transpose() * torque_body_, force_moment_ * r};
+  // C = 0 without a world-axes force off the COM: no product to form.
+  principal_parts_ = {
+      stamp, body_from_principal, r.transpose() * force_body_, r.transpose() * torque_body_,
+      has_force_moment_ ? Eigen::Matrix3d(force_moment_ * r) : Eigen::Matrix3d::Zero()};
   has_principal_parts_ = true;
   return principal_parts_;
 }

@@ -35,6 +35,8 @@ StepEngine::StepEngine(std::size_t threads) : team_(threads) {
   for (Share& share : workspace_.shares) {
     share.free_batch.reserve(kBatch);
     share.loaded_batch.reserve(kBatch);
+    share.dragged.free_batch.reserve(kBatch);
+    share.dragged.loaded_batch.reserve(kBatch);
     share.substep_batches.reserve(kSubstepBatches);
   }
 }
@@ -42,7 +44,7 @@ StepEngine::StepEngine(std::size_t threads) : team_(threads) {
 StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
   hot_ = &bodies->hot();
   context_ = context;
-  const bool has_drag = context.dragged != nullptr && !context.dragged->empty();
+  const bool has_drag = context.drag != nullptr;
   if (has_drag) PrepareDragFlows(*bodies);
   const std::size_t size = bodies->size();
   if (context.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
@@ -50,13 +52,27 @@ StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
   for (Share& share : workspace_.shares) {
     share.counts = StepCounts{};
     share.lane_cache.StartStep(context.loads_kept);
-    // The drag flows write states between the scheme's steps.
-    if (has_drag) share.lane_cache.ForgetStates();
+    if (has_drag) {
+      share.dragged.lane_cache.StartStep(context.loads_kept);
+      // The drag flows wrote their bodies' states after the last step.
+      share.dragged.lane_cache.ForgetStates();
+    }
   }
   auto step_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
-    StepBlock(begin, end, &workspace_.shares[member]);
+    StepBlock<false>(begin, end, &workspace_.shares[member]);
   };
-  team_.ForBlocks(size, kBodiesPerBlock, step_block);
+  // Drag over dt/2 before and after the scheme's step; a scene without drag
+  // takes a loop that does not ask.
+  auto step_dragged_block = [this](std::size_t member, std::size_t begin, std::size_t end) {
+    AdvanceDragged(begin, end);
+    StepBlock<true>(begin, end, &workspace_.shares[member]);
+    AdvanceDragged(begin, end);
+  };
+  if (has_drag) {
+    team_.ForBlocks(size, kBodiesPerBlock, step_dragged_block);
+  } else {
+    team_.ForBlocks(size, kBodiesPerBlock, step_block);
+  }
   StepCounts counts;
   for (const Share& share : workspace_.shares) {
     counts.frozen += share.counts.frozen;
@@ -67,7 +83,10 @@ StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
 }
 
 void StepEngine::OnStatesWritten() {
-  for (Share& share : workspace_.shares) share.lane_cache.ForgetStates();
+  for (Share& share : workspace_.shares) {
+    share.lane_cache.ForgetStates();
+    share.dragged.lane_cache.ForgetStates();
+  }
 }
 
 void StepEngine::OnBodyRemoved(std::size_t index) {
@@ -93,15 +112,39 @@ inline BodyBatch StepEngine::Batch(const std::vector<std::size_t>& indices, Lane
           cache};
 }
 
+// Inline: called for each body with drag, in the step loop.
+inline void StepEngine::BatchDragged(std::size_t index, bool loaded, bool within_one_step_bound,
+                                     Share* share) {
+  Share::DraggedBatches& dragged = share->dragged;
+  std::vector<std::size_t>& batch = loaded ? dragged.loaded_batch : dragged.free_batch;
+  bool& within_bound = loaded ? dragged.loaded_within_bound : dragged.free_within_bound;
+  batch.push_back(index);
+  within_bound = within_bound && within_one_step_bound;
+  if (batch.size() == kBatch) {
+    StepBatch(loaded ? &Integrator::StepLoaded : &Integrator::StepFree, &batch, within_bound,
+              &dragged.lane_cache, share);
+    within_bound = true;
+  }
+}
+
+template <bool kWithDrag>
 void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   BodyHotColumns& hot = *hot_;
+  // The next body with drag from i on (kWithDrag).
+  const std::size_t* next_dragged = nullptr;
+  const std::size_t* dragged_end = nullptr;
+  if constexpr (kWithDrag) {
+    const std::vector<std::size_t>& dragged = *context_.drag->bodies;
+    next_dragged = dragged.data() +
+                   (std::lower_bound(dragged.begin(), dragged.end(), begin) - dragged.begin());
+    dragged_end = dragged.data() + dragged.size();
+  }
   const Integrator& integrator = *context_.integrator;
   const double dt_s = context_.dt_s;
   const std::uint32_t max_substeps = context_.max_substeps;
   // Whether every body in the free and the loaded batch is within PlanStep's
   // cheap bound (BodyBatch::within_one_step_bound).
   bool free_within_bound = true, loaded_within_bound = true;
-  AdvanceDragged(begin, end);
   for (std::size_t i = begin; i < end; ++i) {
     if (hot.faults[i] != BodyFault::kNone) continue;
     const BodyModel& model = hot.models[i];
@@ -118,18 +161,27 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
         break;
       }
       case StepClass::kBatched:
+        if constexpr (kWithDrag) {
+          while (next_dragged != dragged_end && *next_dragged < i) ++next_dragged;
+          if (next_dragged != dragged_end && *next_dragged == i) {
+            BatchDragged(i, load != nullptr, plan.within_one_step_bound, share);
+            break;
+          }
+        }
         if (load != nullptr) {
           share->loaded_batch.push_back(i);
           loaded_within_bound = loaded_within_bound && plan.within_one_step_bound;
           if (share->loaded_batch.size() == kBatch) {
-            StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
+            StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound,
+                      &share->lane_cache, share);
             loaded_within_bound = true;
           }
         } else {
           share->free_batch.push_back(i);
           free_within_bound = free_within_bound && plan.within_one_step_bound;
           if (share->free_batch.size() == kBatch) {
-            StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
+            StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound,
+                      &share->lane_cache, share);
             free_within_bound = true;
           }
         }
@@ -150,14 +202,24 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       }
     }
   }
-  StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, share);
-  StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, share);
+  StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, &share->lane_cache,
+            share);
+  StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, &share->lane_cache,
+            share);
+  if constexpr (kWithDrag) {
+    Share::DraggedBatches& dragged = share->dragged;
+    StepBatch(&Integrator::StepFree, &dragged.free_batch, dragged.free_within_bound,
+              &dragged.lane_cache, share);
+    StepBatch(&Integrator::StepLoaded, &dragged.loaded_batch, dragged.loaded_within_bound,
+              &dragged.lane_cache, share);
+    dragged.free_within_bound = true;
+    dragged.loaded_within_bound = true;
+  }
   for (Share::SubstepBatch& batch : share->substep_batches) StepSubstepBatch(&batch, share);
-  AdvanceDragged(begin, end);
 }
 
 void StepEngine::PrepareDragFlows(const BodyStore& bodies) {
-  const std::vector<std::size_t>& dragged = *context_.dragged;
+  const std::vector<std::size_t>& dragged = *context_.drag->bodies;
   if (drag_flows_.size() == dragged.size() && drag_flows_dt_s_ == context_.dt_s) return;
   drag_flows_.clear();
   drag_flows_.reserve(dragged.size());
@@ -169,21 +231,21 @@ void StepEngine::PrepareDragFlows(const BodyStore& bodies) {
 }
 
 void StepEngine::AdvanceDragged(std::size_t begin, std::size_t end) const {
-  if (context_.dragged == nullptr) return;
-  const std::vector<std::size_t>& dragged = *context_.dragged;
+  const std::vector<std::size_t>& dragged = *context_.drag->bodies;
+  const Eigen::Vector3d& wind_mps = context_.drag->wind_mps;
   for (auto it = std::lower_bound(dragged.begin(), dragged.end(), begin);
        it != dragged.end() && *it < end; ++it) {
     const std::size_t i = *it;
     if (hot_->faults[i] != BodyFault::kNone) continue;
     const std::size_t position = static_cast<std::size_t>(it - dragged.begin());
-    drag_flows_[position].Advance(hot_->models[i], context_.wind_mps, &hot_->states[i]);
+    drag_flows_[position].Advance(hot_->models[i], wind_mps, &hot_->states[i]);
   }
 }
 
 void StepEngine::StepBatch(BatchStep step, std::vector<std::size_t>* bodies,
-                           bool within_one_step_bound, Share* share) {
+                           bool within_one_step_bound, LaneCache* cache, Share* share) {
   if (bodies->empty()) return;
-  BodyBatch batch = Batch(*bodies, &share->lane_cache);
+  BodyBatch batch = Batch(*bodies, cache);
   // The scheme writes a failing body's fault straight into the store's
   // column, where every body of the batch had none: that freezes it.
   const std::vector<BodyFault>& faults = hot_->faults;
@@ -293,7 +355,8 @@ void StepEngine::RecordStepStart(BodyStore* bodies) const {
     record.wrench.force -= properties.linear_damping_per_s * state.linear_momentum;
     record.wrench.torque -= properties.angular_damping_per_s * state.angular_momentum;
     if (properties.drag.any()) {
-      const Wrench drag = DragWrench(properties.drag, hot.models[i], state, context_.wind_mps);
+      const Wrench drag =
+          DragWrench(properties.drag, hot.models[i], state, context_.drag->wind_mps);
       record.wrench.force += drag.force;
       record.wrench.torque += drag.torque;
     }

@@ -36,6 +36,13 @@ namespace rigid_body_sim::core {
 
 struct BodyBatch;
 
+// The bodies with drag (BodyProperties::drag) and the wind they move in over
+// a step.
+struct StepDrag {
+  const std::vector<std::size_t>* bodies = nullptr;    // their indices, ascending
+  Eigen::Vector3d wind_mps = Eigen::Vector3d::Zero();  // world axes
+};
+
 // The World's settings for one step.
 struct StepContext {
   const Integrator* integrator = nullptr;
@@ -45,10 +52,8 @@ struct StepContext {
   bool loads_kept = false;
   // Fill every body's StepRecord in the store (World::RecordNextStep).
   bool record = false;
-  // The indices of the bodies with drag (BodyProperties::drag), ascending,
-  // and the wind they move in over the step [m/s, world axes].
-  const std::vector<std::size_t>* dragged = nullptr;
-  Eigen::Vector3d wind_mps = Eigen::Vector3d::Zero();
+  // Null when no body has drag.
+  const StepDrag* drag = nullptr;
 };
 
 // What one step counted, for the World's totals.
@@ -107,6 +112,18 @@ class StepEngine {
     };
     std::vector<SubstepBatch> substep_batches;  // at most kSubstepBatches
     LaneCache lane_cache;
+    // Bodies with drag that take one step each, batched apart with a cache
+    // of their own: the drag flows write their states between the scheme's
+    // steps, so their lanes forget the states every step, and the other
+    // bodies' lanes need not.
+    struct DraggedBatches {
+      std::vector<std::size_t> free_batch;
+      std::vector<std::size_t> loaded_batch;
+      bool free_within_bound = true;  // as StepBlock's
+      bool loaded_within_bound = true;
+      LaneCache lane_cache;
+    };
+    DraggedBatches dragged;
     StepCounts counts;
   };
 
@@ -120,16 +137,21 @@ class StepEngine {
     std::vector<ExactFreeFlow> free_flows;
   };
 
-  // Steps the bodies of indices [begin, end) that move, adding to `share`'s
-  // counts; a body with drag takes its drag flow over dt/2 before and after.
+  // Steps the bodies of indices [begin, end) that move by the scheme, adding
+  // to `share`'s counts; `kWithDrag`: the step has bodies with drag, which
+  // take their own batches (Share::dragged).
+  template <bool kWithDrag>
   void StepBlock(std::size_t begin, std::size_t end, Share* share);
   using BatchStep = void (Integrator::*)(const BodyBatch& batch, double dt_s) const;
-  // Steps `bodies` by dt through `step` (StepFree or StepLoaded), which
-  // writes back only the states that pass their check and reports the
-  // others; freezes those, and empties `bodies`.
+  // Steps `bodies` by dt through `step` (StepFree or StepLoaded) with the
+  // lanes' `cache`, which writes back only the states that pass their check
+  // and reports the others; freezes those, and empties `bodies`.
   // `within_one_step_bound`: as BodyBatch's.
   void StepBatch(BatchStep step, std::vector<std::size_t>* bodies, bool within_one_step_bound,
-                 Share* share);
+                 LaneCache* cache, Share* share);
+  // Adds body `index` with drag, `loaded` or not, to its batch in
+  // `share->dragged`, stepping the batch when full.
+  void BatchDragged(std::size_t index, bool loaded, bool within_one_step_bound, Share* share);
   // Adds body `index` to the substep batch of its n and kind, stepping the
   // batch when full; false (and nothing done) when every batch is taken by
   // another n.
@@ -149,7 +171,7 @@ class StepEngine {
   // for the scheme.
   BodyBatch Batch(const std::vector<std::size_t>& indices, LaneCache* cache);
   // The drag flow over dt/2 of the bodies with drag in indices [begin, end)
-  // that are not frozen.
+  // that are not frozen; context_.drag not null.
   void AdvanceDragged(std::size_t begin, std::size_t end) const;
   // drag_flows_ for the step's bodies with drag and dt, if they are not.
   void PrepareDragFlows(const BodyStore& bodies);
@@ -162,8 +184,8 @@ class StepEngine {
   // The step under way (Step): its bodies' columns and its settings.
   BodyHotColumns* hot_ = nullptr;
   StepContext context_;
-  // The drag flow over dt/2 of each body of StepContext::dragged, in its
-  // order; empty when the bodies with drag changed since they were made.
+  // The drag flow over dt/2 of each body of StepDrag::bodies, in its order;
+  // empty when the bodies with drag changed since they were made.
   std::vector<DragFlow> drag_flows_;
   double drag_flows_dt_s_ = 0.0;
 };

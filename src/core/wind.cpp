@@ -13,7 +13,7 @@ constexpr std::uint64_t kWindKeySlot = ~std::uint64_t{0};
 
 }  // namespace
 
-Wind::Wind(const WindDef& def, double dt_s) : def_(def) {
+Wind::Wind(const WindDef& def, double dt_s) : def_(def), has_gusts_(def.has_gusts()) {
   const double ratio = dt_s / def.gust_time_constant_s;
   decay_ = std::exp(-ratio);
   // 1 − e^(−2h/T) by expm1, exact to round-off however small h/T.
@@ -30,14 +30,13 @@ Eigen::Vector3d Wind::ScaledDraw(const Eigen::Vector3d& stddev_mps, std::uint64_
   return draw;
 }
 
-void Wind::Advance() {
-  ++step_;
-  if (def_.has_gusts()) gust_mps_ = decay_ * gust_mps_ + ScaledDraw(innovation_stddev_mps_, step_);
+void Wind::AdvanceGust() {
+  gust_mps_ = decay_ * gust_mps_ + ScaledDraw(innovation_stddev_mps_, step_);
 }
 
 void Wind::Restart() {
   step_ = 0;
-  gust_mps_ = def_.has_gusts() ? ScaledDraw(def_.gust_stddev_mps, 0) : Eigen::Vector3d::Zero();
+  gust_mps_ = has_gusts_ ? ScaledDraw(def_.gust_stddev_mps, 0) : Eigen::Vector3d::Zero();
 }
 
 }  // namespace rigid_body_sim::core

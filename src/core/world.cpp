@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <unordered_map>
 
@@ -28,8 +29,8 @@ World::World(const WorldDef& def, std::vector<BodyDef> bodies)
     const BodyId id = bodies_.Add(std::move(bodies[i]));
     PrepareBody(i);
     wrenches_.AddBody(id, bodies_.hot().models[i].particle_count());
-    actuators_.AddBody(id, bodies_.hot().models[i], bodies_.cold().frames[i], std::move(thrusters),
-                       options_.dt_s);
+    actuators_.AddBody(id, i, bodies_.hot().models[i], bodies_.cold().frames[i],
+                       std::move(thrusters), options_.dt_s);
   }
   engine_ = std::make_unique<StepEngine>(options_.threads);
 }
@@ -70,7 +71,7 @@ BodyId World::AddBody(BodyDef def) {
   if (bodies_.cold().properties[index].drag.any()) engine_->OnDraggedChanged();
   // Sums again, with gravity on the new body.
   wrenches_.AddBody(id, bodies_.hot().models[index].particle_count());
-  actuators_.AddBody(id, bodies_.hot().models[index], bodies_.cold().frames[index],
+  actuators_.AddBody(id, index, bodies_.hot().models[index], bodies_.cold().frames[index],
                      std::move(thrusters), options_.dt_s);
   for (BodyListener* listener : listeners_) listener->OnBodyAdded(*this, id);
   return id;
@@ -82,7 +83,7 @@ void World::RemoveBody(BodyId id) {
   bodies_.Remove(id);
   engine_->OnBodyRemoved(index);
   wrenches_.RemoveBody(id);  // sums again: the loads moved with their bodies
-  actuators_.RemoveBody(id);
+  actuators_.RemoveBody(id, index);
   dragged_.erase(std::remove(dragged_.begin(), dragged_.end(), index), dragged_.end());
   for (std::size_t& dragged : dragged_) {
     if (dragged > index) --dragged;
@@ -104,10 +105,8 @@ std::uint32_t World::SubstepsFor(std::size_t index, const BodyState& state) cons
 void World::Step() {
   BodyHotColumns& hot = bodies_.hot();
   const double tolerance_s = kTimeToleranceInSteps * options_.dt_s;
-  // A thrust that changes over the step changes the loads it is summed into.
-  if (!actuators_.empty() && actuators_.StartStep(time(), options_.wrench_timeout_s, tolerance_s)) {
-    wrenches_.MarkLoadsStale();
-  }
+  const bool thrust_changed =
+      !actuators_.empty() && actuators_.StartStep(time(), options_.wrench_timeout_s, tolerance_s);
   const bool loads_changed = wrenches_.Reduce(time(), options_.wrench_timeout_s, tolerance_s,
                                               bodies_, &hot.loads, &hot.loaded);
   if (loads_changed) {
@@ -120,13 +119,16 @@ void World::Step() {
       }
       if (properties[i].has_damping()) hot.loaded[i] = 1;
     }
-    actuators_.AddLoads(bodies_, &hot.loads, &hot.loaded);
+    actuators_.AddLoads(&hot.loads, &hot.loaded);
+  } else if (thrust_changed) {
+    actuators_.UpdateLoads(&hot.loads, &hot.loaded);
   }
   last_step_recorded_ = record_next_step_;
   record_next_step_ = false;
-  const StepContext context{integrator_.get(),   options_.dt_s,       options_.max_substeps,
-                            !loads_changed,      last_step_recorded_, &dragged_,
-                            wind_.velocity_mps()};
+  StepContext context{integrator_.get(), options_.dt_s, options_.max_substeps,
+                      !loads_changed && !thrust_changed, last_step_recorded_};
+  std::optional<StepDrag> drag;
+  if (!dragged_.empty()) context.drag = &drag.emplace(StepDrag{&dragged_, wind_.velocity_mps()});
   const StepCounts counts = engine_->Step(&bodies_, context);
   wind_.Advance();
   frozen_count_ += counts.frozen;

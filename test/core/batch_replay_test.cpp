@@ -42,11 +42,17 @@ void ExpectReplayedStepsGatheredSteps(World* world, const HoldWrenches& hold, in
 // check each body's fit. 150 slow bodies under gravity, three batches of the
 // World's 64; body 0 is a sphere, and body 140 damped too strongly for the
 // lanes (100/s at dt = 1 ms), so that the third batch steps it alone.
-World MakeSlowWorld() {
+// `drag_every` > 0: every drag_every-th body from body 3 on has drag.
+World MakeSlowWorld(int drag_every = 0) {
   std::vector<BodyModel> models;
   std::vector<BodyState> states;
   std::vector<BodyProperties> properties(150);
   properties[140].angular_damping_per_s = 100.0;
+  for (int i = 3; drag_every > 0 && i < 150; i += drag_every) {
+    properties[i].drag.linear_Nspm = {0.1, 0.2, 0.3};
+    properties[i].drag.quadratic_Ns2pm2 = {0.02, 0.02, 0.05};
+    properties[i].drag.angular_linear_Nms = {0.01, 0.02, 0.01};
+  }
   for (int i = 0; i < 150; ++i) {
     const Eigen::Vector3d moments =
         i == 0 ? Eigen::Vector3d(1.0, 1.0, 1.0) : Eigen::Vector3d(1.0 + 0.01 * i, 1.5, 2.0);
@@ -93,6 +99,15 @@ TEST(BatchReplay, ReplayedBatchesStepAsGatheredOnesThroughAChangeOfLoad) {
   };
   hold_more(&world);
   ExpectReplayedStepsGatheredSteps(&world, hold_more, 5, "after a new load");
+}
+
+// Bodies with drag take batches with a lane cache of their own, which
+// forgets their states every step (the drag flows write them between the
+// scheme's steps); the other bodies' lanes keep their states and replay.
+TEST(BatchReplay, BodiesWithDragBesideBodiesThatReplay) {
+  World world = MakeSlowWorld(7);
+  HoldPushes(&world);
+  ExpectReplayedStepsGatheredSteps(&world, HoldPushes, 8, "drag on every seventh body");
 }
 
 TEST(BatchReplay, AStateWrittenBetweenStepsIsWhereTheNextStepStarts) {

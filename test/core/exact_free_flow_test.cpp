@@ -4,12 +4,14 @@
 // Reset, another body moving into the index) makes it start again from the state.
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "integrators/exact_free_flow.h"
+#include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/world.h"
 #include "test_bodies.h"
 
@@ -276,6 +278,38 @@ TEST(ExactFreeFlow, TwoThreadsGiveTheBitsOfOne) {
   }
   for (std::size_t i = 0; i < one.size(); ++i) {
     ASSERT_TRUE(test::SameBits(one.state(i), two.state(i))) << "body " << i;
+  }
+}
+
+// The motion depends on |L| only through its time scale: L and t give the
+// orientations of L/s and s t. So a body of |L| = 1e-150 or 1e-300, stepped
+// at dt = 0.37 s / |L| by the uncached step and by the kept flow, keeps a
+// unit quaternion and follows the closed form of the unit L at the scaled
+// time, where the squares of L's components underflow.
+TEST(ExactFreeFlow, TinyMomentaFollowTheScaledMotion) {
+  const BodyModel model = test::Diag123Body();
+  const std::unique_ptr<Integrator> exact_free = MakeIntegrator("exact_free");
+  constexpr int kSteps = 100;
+  for (const double size : {1e-150, 1e-300}) {
+    BodyState unit = Tumbling();
+    unit.angular_momentum.normalize();
+    BodyState start = unit;
+    start.angular_momentum *= size;
+    const double dt_s = 0.37 / size;
+    BodyState uncached = start, kept = start;
+    ExactFreeFlow flow;
+    for (int n = 1; n <= kSteps; ++n) {
+      exact_free->Step(model, nullptr, dt_s, &uncached);
+      kept.orientation = flow.Advance(model, kept, dt_s);
+      const Eigen::Quaterniond reference = MotionFrom(model, unit).Orientation(size * (n * dt_s)) *
+                                           model.principal_axes().conjugate();
+      for (const BodyState* state : {&uncached, &kept}) {
+        ASSERT_NEAR(state->orientation.norm(), 1.0, 4 * kEpsilon)
+            << "|L| " << size << ", step " << n;
+        ASSERT_LE(test::AngleBetween(state->orientation, reference), 1e-12)
+            << "|L| " << size << ", step " << n << (state == &kept ? ", kept flow" : ", uncached");
+      }
+    }
   }
 }
 

@@ -245,6 +245,84 @@ TEST(Thrusters, RunsRepeatBitForBit) {
   EXPECT_TRUE(test::SameBits(a, b));
 }
 
+// A step whose thrusts alone changed adds them to each body's kept sum of
+// its other loads (ActuatorTable::UpdateLoads): the same bits as summing
+// every load anew, which SetGravity forces in the second world. Tumbling
+// bodies with offset thrusters, one without lag whose thrust drops to 0 (and
+// with it its only load), another under a held wrench and gravity, a body
+// without thrusters between them, one removed on the way (the bodies after
+// it move down) and one whose commands are cleared.
+TEST(Thrusters, ThrustsAddedToTheKeptLoadsGiveTheFullSumsBits) {
+  const auto make_world = [] {
+    WorldDef options;
+    options.dt_s = 0.01;
+    options.gravity = {0.0, 0.0, -9.81};
+    std::vector<BodyDef> bodies;
+    for (int i = 0; i < 5; ++i) {
+      BodyState start;
+      start.angular_momentum = {0.3, -0.2 + 0.1 * i, 0.5};
+      BodyFrames frames;
+      BodyDef def(
+          test::DiagonalBody({1.0, 2.0, 2.5}, Eigen::Vector3d::Zero(), "body" + std::to_string(i)),
+          start, BodyProperties{}, frames);
+      if (i == 2) {
+        def.properties.gravity_scale = 0.0;
+        bodies.push_back(def);  // no thrusters
+        continue;
+      }
+      for (int k = 0; k < 2; ++k) {
+        const std::string site = "site" + std::to_string(i) + "_" + std::to_string(k);
+        def.frames.sites.push_back(
+            Site{site, Eigen::Vector3d(k == 0 ? 0.2 : -0.2, 0.1, 0.05),
+                 Eigen::Quaterniond(Eigen::AngleAxisd(0.3, Eigen::Vector3d::UnitX()))});
+        ThrusterDef rotor = Rotor(i == 1 ? 0.0 : 0.05, k == 0 ? 0.02 : -0.02);
+        rotor.name = "rotor" + std::to_string(k);
+        rotor.site = site;
+        def.actuators.push_back(rotor);
+      }
+      if (i == 1) def.properties.gravity_scale = 0.0;  // its thrust is its only load
+      bodies.push_back(def);
+    }
+    return World(options, std::move(bodies));
+  };
+  World kept = make_world();
+  World summed_anew = make_world();
+  const auto command = [](World* world, int n) {
+    for (std::size_t i = 0; i < world->size(); ++i) {
+      const std::vector<ThrusterDef>* thrusters = world->actuators().thrusters(world->id(i));
+      if (thrusters == nullptr) continue;
+      for (std::size_t k = 0; k < thrusters->size(); ++k) {
+        const double u = (n / 10) % 3 == 2 ? 0.0 : 1.0 + 0.1 * n + 0.5 * static_cast<double>(k + i);
+        world->HoldActuatorCommand(world->id(i), k, u, world->time());
+      }
+    }
+    if (n == 40) {
+      BodyWrench push;
+      push.body = world->id(3);
+      push.axes = WrenchAxes::kBody;
+      push.force = {0.1, -0.2, 0.3};
+      push.couple = {0.01, 0.0, -0.02};
+      world->HoldBodyWrench(push);
+    }
+    if (n == 70) world->RemoveBody(world->id(0));
+    if (n == 90) world->ClearBodyWrenches(world->id(1));
+  };
+  for (int n = 0; n < 150; ++n) {
+    if (n % 5 == 0) {
+      command(&kept, n);
+      command(&summed_anew, n);
+    }
+    summed_anew.SetGravity(summed_anew.options().gravity);
+    kept.Step();
+    summed_anew.Step();
+    ASSERT_EQ(kept.size(), summed_anew.size());
+    for (std::size_t i = 0; i < kept.size(); ++i) {
+      ASSERT_TRUE(test::SameBits(kept.state(i), summed_anew.state(i)))
+          << "step " << n << ", body " << i;
+    }
+  }
+}
+
 std::string DefMessage(const ThrusterDef& thruster, const ThrusterDef* second = nullptr) {
   return rigid_body_sim::test::MessageOf([&] {
     std::vector<BodyDef> bodies;

@@ -7,6 +7,11 @@
 // for the same thruster, acts from its start time and, with a timeout, until
 // start + timeout; while none acts u = 0. T follows u with its lag whatever
 // u is, so at a timeout T decays from where it is.
+//
+// The mean thrusts change in most steps while the held wrenches do not, so
+// a thrust is added to its body's loads on top of the sum of the rest, kept
+// per body: a step whose thrusts alone changed adds the new ones to that sum
+// for the bodies whose thrust changed, without summing any other load anew.
 #pragma once
 
 #include <cstddef>
@@ -17,7 +22,6 @@
 #include "rigid_body_sim/core/body_frames.h"
 #include "rigid_body_sim/core/body_id.h"
 #include "rigid_body_sim/core/body_model.h"
-#include "rigid_body_sim/core/body_store.h"
 #include "rigid_body_sim/core/held_loads.h"
 #include "rigid_body_sim/core/thruster.h"
 
@@ -25,11 +29,13 @@ namespace rigid_body_sim::core {
 
 class ActuatorTable {
  public:
-  // Body `id` with `thrusters` (checked: CheckBodyDef), whose sites are in
-  // `frames`, stepped by `step_s`; a body without thrusters is not kept.
-  void AddBody(BodyId id, const BodyModel& model, const BodyFrames& frames,
+  // Body `id` at `index` in the store with `thrusters` (checked:
+  // CheckBodyDef), whose sites are in `frames`, stepped by `step_s`; a body
+  // without thrusters is not kept.
+  void AddBody(BodyId id, std::size_t index, const BodyModel& model, const BodyFrames& frames,
                std::vector<ThrusterDef> thrusters, double step_s);
-  void RemoveBody(BodyId id);
+  // Body `id`, at `index`, is gone; the bodies after it moved down by one.
+  void RemoveBody(BodyId id, std::size_t index);
   bool empty() const { return bodies_.empty(); }
 
   // The thrusters of `id` in their order, or nullptr for a body without any.
@@ -51,13 +57,16 @@ class ActuatorTable {
   // − tolerance < t_s, for timeout_s > 0), takes each thruster's u (its
   // command if it started by t_s + tolerance, else 0), sets the step's mean
   // thrust and moves T to the end of the step. Returns whether any mean
-  // thrust differs from the last step's, so that loads summed with those
-  // must be summed anew.
+  // thrust differs from the last step's (then UpdateLoads).
   bool StartStep(double t_s, double timeout_s, double tolerance_s);
-  // Adds the mean thrusts and their couples of this step to loads[i] (i the
-  // body's index in `store`), setting loaded[i] for a body with a thrust.
-  void AddLoads(const BodyStore& store, std::vector<HeldLoads>* loads,
-                std::vector<char>* loaded) const;
+  // After every other load of the step was summed anew into `loads` and
+  // `loaded` (the store's columns): keeps each body's sum and adds the mean
+  // thrusts and their couples of this step to it, setting loaded[i] for a
+  // body with a thrust.
+  void AddLoads(std::vector<HeldLoads>* loads, std::vector<char>* loaded);
+  // The other loads kept since AddLoads: the sum AddLoads kept, plus the
+  // step's mean thrusts, for each body whose mean thrust changed.
+  void UpdateLoads(std::vector<HeldLoads>* loads, std::vector<char>* loaded) const;
 
  private:
   struct Thruster {
@@ -78,12 +87,24 @@ class ActuatorTable {
   };
   struct ActuatedBody {
     BodyId id;
+    std::size_t index = 0;  // in the store
     std::vector<ThrusterDef> defs;
     std::vector<Thruster> thrusters;
+    // The step's mean thrusts as a body-axes force at the COM and a couple;
+    // `thrusts`: some mean thrust is not 0.
+    Eigen::Vector3d force_n = Eigen::Vector3d::Zero();
+    Eigen::Vector3d torque_nm = Eigen::Vector3d::Zero();
+    bool thrusts = false;
+    bool thrust_changed = false;  // in the step under way
+    // The body's other loads, as AddLoads found them.
+    HeldLoads::BodyAxesSum other_loads{};
+    bool other_loaded = false;
   };
   ActuatedBody* Find(BodyId id);
   const ActuatedBody* Find(BodyId id) const;
   static void Zero(Thruster* thruster);
+  // Adds `body`'s mean thrusts to `loads`, setting `loaded` if it has any.
+  static void AddThrust(const ActuatedBody& body, HeldLoads* loads, char* loaded);
 
   std::vector<ActuatedBody> bodies_;  // in no particular order
   BodyMap<std::size_t> index_;        // id → position in bodies_

@@ -34,6 +34,22 @@ class alignas(64) HeldLoads final : public Load {
   // std::invalid_argument for a rate that is negative or not finite.
   void SetDamping(double linear_per_s, double angular_per_s);
 
+  // What AddBodyForce at the COM and AddBodyCouple write: the body-axes sums
+  // and their flags. Loads whose body-axes terms change more often than the
+  // rest (a thruster's thrust) keep this before adding them, and later go
+  // back to it with RestoreBodyAxesSum and add the new ones, which gives the
+  // same bits as summing everything anew.
+  struct BodyAxesSum {
+    Eigen::Vector3d force_body;
+    Eigen::Vector3d torque_body;
+    bool has_torque;
+    bool has_body_axes;
+  };
+  BodyAxesSum body_axes_sum() const {
+    return {force_body_, torque_body_, has_torque_, has_body_axes_};
+  }
+  void RestoreBodyAxesSum(const BodyAxesSum& sum);
+
   // Norm of the couple dropped by the projector at orientation R_WB [N m].
   double DroppedTorque(const Eigen::Matrix3d& R_WB) const;
 

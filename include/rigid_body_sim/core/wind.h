@@ -34,8 +34,12 @@ class Wind {
   std::uint64_t step() const { return step_; }
 
   // To the next lattice step: g ← e^(−h/T) g + σ √(1 − e^(−2h/T)) n, the
-  // exact transition of the process over h.
-  void Advance();
+  // exact transition of the process over h. Inline, as every World step
+  // calls it, in still air too.
+  void Advance() {
+    ++step_;
+    if (has_gusts_) AdvanceGust();
+  }
   // Back to lattice step 0, whose gust is drawn from the stationary law.
   void Restart();
   // The mean from now on; the gusts go on. `velocity_mps` finite.
@@ -44,8 +48,11 @@ class Wind {
  private:
   // σ_i · n(seed, step, i).
   Eigen::Vector3d ScaledDraw(const Eigen::Vector3d& stddev_mps, std::uint64_t step) const;
+  // The gust's transition to step_.
+  void AdvanceGust();
 
   WindDef def_;
+  bool has_gusts_ = false;                 // def_.has_gusts()
   double decay_ = 0.0;                     // e^(−h/T)
   Eigen::Vector3d innovation_stddev_mps_;  // σ √(1 − e^(−2h/T))
   Eigen::Vector3d gust_mps_ = Eigen::Vector3d::Zero();

@@ -201,7 +201,12 @@ bool ExactFreeFlow::Rebuild(const TorqueFreeMotion& motion, const BodyModel& mod
       TwoProduct(elliptic->precession_gain, elliptic->complete_third_kind), quarter_period);
   precession_per_twist_ = elliptic->precession_gain * twist_gain;
   cn_axis_ = elliptic->cn_axis;
-  amplitudes_ = elliptic->amplitudes;
+  // Only the amplitudes' ratios matter (OrientationAt normalises), so they
+  // are kept over the power of two of their size: the squares and products
+  // of a tiny or huge L then neither underflow nor overflow.
+  int exponent = 0;
+  std::frexp(elliptic->amplitudes.cwiseAbs().maxCoeff(), &exponent);
+  for (int k = 0; k < 3; ++k) amplitudes_[k] = std::ldexp(elliptic->amplitudes[k], -exponent);
   alignment_ = elliptic->alignment;
   // P for c = x is the turn by 2π/3 about (1, 1, 1), x → y → z → x.
   const Eigen::Quaterniond cyclic(0.5, 0.5, 0.5, 0.5);

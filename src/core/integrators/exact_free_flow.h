@@ -87,7 +87,7 @@ class ExactFreeFlow {
   double sn_scale_ = 0.0, cn_scale_ = 0.0, dn_scale_ = 0.0;
 
   int cn_axis_ = 0;
-  Eigen::Vector3d amplitudes_ = Eigen::Vector3d::Zero();
+  Eigen::Vector3d amplitudes_ = Eigen::Vector3d::Zero();  // A_1, A_2, A_3 over a power of two
   Eigen::Quaterniond alignment_ = Eigen::Quaterniond::Identity();  // R_WP(0) Q(Π(0))ᵀ
   // P⁻¹ R_BPᵀ: P takes e_x, e_y, e_z to e_a, e_b, e_c (c the cn axis, a b c
   // right-handed), in which Q(Π) = Ry(−θ) Rz(−φ) P⁻¹ from Π's polar angles about e_c.

@@ -36,6 +36,11 @@ double LandenStep(double q, double one_minus_q, double phi) {
   return std::copysign(M_PI / 2.0 - 2.0 * std::asin(std::sqrt(0.5 * gap)), y);
 }
 
+// v 2^exponent, exact while no component leaves the normal range.
+Eigen::Vector3d TimesPowerOfTwo(const Eigen::Vector3d& v, int exponent) {
+  return {std::ldexp(v.x(), exponent), std::ldexp(v.y(), exponent), std::ldexp(v.z(), exponent)};
+}
+
 }  // namespace
 
 TorqueFreeMotion::TorqueFreeMotion(const Eigen::Vector3d& principal_moments,
@@ -54,6 +59,9 @@ TorqueFreeMotion::TorqueFreeMotion(const Eigen::Vector3d& principal_moments,
   }
   const Eigen::Vector3d& p = initial_momentum_;
   if (p.isZero(0.0)) return;  // at rest (also every single particle)
+  // The motion is followed at Π 2^−e with 2^e the size of Π (momentum_exponent_).
+  std::frexp(p.cwiseAbs().maxCoeff(), &momentum_exponent_);
+  initial_momentum_ = TimesPowerOfTwo(initial_momentum_, -momentum_exponent_);
 
   if (l2 - l1 <= kSymmetricTolerance * l2) {
     regime_ = Regime::kSymmetric;
@@ -203,31 +211,41 @@ Eigen::Quaterniond TorqueFreeMotion::MomentumFrame(const Eigen::Vector3d& moment
   return Eigen::Quaterniond(frame);
 }
 
+double TorqueFreeMotion::ScaledTime(double t_s) const {
+  return std::ldexp(t_s, momentum_exponent_);
+}
+
 Eigen::Vector3d TorqueFreeMotion::BodyMomentum(double t_s) const {
+  Eigen::Vector3d scaled;
   switch (regime_) {
     case Regime::kSteady:
-      return initial_momentum_;
+      scaled = initial_momentum_;
+      break;
     case Regime::kSymmetric:
-      return symmetric_axes_ * symmetric_->BodyMomentum(t_s);
+      scaled = symmetric_axes_ * symmetric_->BodyMomentum(ScaledTime(t_s));
+      break;
     default:
-      return MomentumAt(PhaseAt(t_s, false));
+      scaled = MomentumAt(PhaseAt(ScaledTime(t_s), false));
+      break;
   }
+  return TimesPowerOfTwo(scaled, momentum_exponent_);
 }
 
 Eigen::Quaterniond TorqueFreeMotion::Orientation(double t_s) const {
+  const double scaled_t_s = ScaledTime(t_s);
   switch (regime_) {
     case Regime::kSteady: {
       const double rate = steady_rate_.norm();
       if (rate == 0.0) return initial_orientation_;
-      return (initial_orientation_ * Eigen::AngleAxisd(rate * t_s, steady_rate_ / rate))
+      return (initial_orientation_ * Eigen::AngleAxisd(rate * scaled_t_s, steady_rate_ / rate))
           .normalized();
     }
     case Regime::kSymmetric:
-      return (symmetric_->Orientation(t_s) * symmetric_axes_.conjugate()).normalized();
+      return (symmetric_->Orientation(scaled_t_s) * symmetric_axes_.conjugate()).normalized();
     default: {
-      const Phase phase = PhaseAt(t_s, true);
+      const Phase phase = PhaseAt(scaled_t_s, true);
       const double precession =
-          precession_rate_ * t_s + precession_gain_ * (phase.third_kind - third_kind_start_);
+          precession_rate_ * scaled_t_s + precession_gain_ * (phase.third_kind - third_kind_start_);
       return (alignment_ * Eigen::AngleAxisd(precession, Eigen::Vector3d::UnitZ()) *
               MomentumFrame(MomentumAt(phase), cn_axis_))
           .normalized();
@@ -237,20 +255,28 @@ Eigen::Quaterniond TorqueFreeMotion::Orientation(double t_s) const {
 
 std::optional<TorqueFreeMotion::Elliptic> TorqueFreeMotion::elliptic() const {
   if (regime_ != Regime::kElliptic) return std::nullopt;
-  return Elliptic{
-      cn_axis_,         amplitudes_,     modulus_,        complementary_squared_, rate_,
-      phase_start_,     quarter_period_, characteristic_, complete_third_kind_,   precession_rate_,
-      precession_gain_, alignment_};
+  return Elliptic{cn_axis_,
+                  TimesPowerOfTwo(amplitudes_, momentum_exponent_),
+                  modulus_,
+                  complementary_squared_,
+                  std::ldexp(rate_, momentum_exponent_),
+                  phase_start_,
+                  quarter_period_,
+                  characteristic_,
+                  complete_third_kind_,
+                  std::ldexp(precession_rate_, momentum_exponent_),
+                  precession_gain_,
+                  alignment_};
 }
 
 double TorqueFreeMotion::period() const {
   constexpr double kInfinity = std::numeric_limits<double>::infinity();
   switch (regime_) {
     case Regime::kElliptic:
-      return 4.0 * quarter_period_ / rate_;
+      return std::ldexp(4.0 * quarter_period_ / rate_, -momentum_exponent_);
     case Regime::kSymmetric: {
       const double rate = std::abs(symmetric_->body_rate());
-      return rate > 0.0 ? 2.0 * M_PI / rate : kInfinity;
+      return rate > 0.0 ? std::ldexp(2.0 * M_PI / rate, -momentum_exponent_) : kInfinity;
     }
     default:
       return kInfinity;

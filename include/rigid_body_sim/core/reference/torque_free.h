@@ -75,10 +75,18 @@ class TorqueFreeMotion {
   };
   static constexpr int kMaxAgmSteps = 24;
 
+  // The motion depends on Π's size only through its time scale (Π → sΠ
+  // and t → t/s give the same orientations), so it is followed at
+  // Π 2^−e, e = momentum_exponent_ (|Π 2^−e|∞ in [0.5, 1)), over the time
+  // t 2^e (ScaledTime): squares of a tiny or huge Π then neither underflow
+  // nor overflow, and a power of two scales without rounding. Every member
+  // below holds the scaled motion; PhaseAt takes the scaled time.
+  double ScaledTime(double t_s) const;
   Phase PhaseAt(double t_s, bool with_third_kind) const;
   Eigen::Vector3d MomentumAt(const Phase& phase) const;
 
   Regime regime_ = Regime::kSteady;
+  int momentum_exponent_ = 0;
   Eigen::Vector3d initial_momentum_;
   Eigen::Quaterniond initial_orientation_;
 
