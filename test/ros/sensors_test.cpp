@@ -20,6 +20,8 @@
 
 #include <geometry_msgs/WrenchStamped.h>
 #include <nav_msgs/Odometry.h>
+#include <rigid_body_sim/DeleteBody.h>
+#include <rigid_body_sim/SpawnBody.h>
 #include <sensor_msgs/Imu.h>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -304,6 +306,48 @@ TEST(Sensors, ANodeSubscribedLateRepeatsTheSamplesBitForBit) {
     ++compared;
   }
   EXPECT_EQ(compared, 100);
+}
+
+TEST(Sensors, ASpawnedBodysSensorsPublishAndAnOffLatticeRateIsRefused) {
+  Node& node = NodeB();
+  ASSERT_TRUE(node.sim.EnsureConnected());
+  const std::string craft =
+      "{name: craft, inertial: {mass: 1.0, inertia: {ixx: 0.1, ixy: 0, ixz: 0, iyy: 0.1, iyz: 0, "
+      "izz: 0.1}}, position: [0, -3, 0], sites: [{name: craft_imu, position: [0.1, 0, 0]}], "
+      "sensors: [{type: imu, name: imu_raw, site: craft_imu, rate: ";
+  rigid_body_sim::SpawnBody refused;
+  refused.request.body_yaml = craft + "30}]}";
+  ASSERT_TRUE(ros::service::call(node.sim.Name("spawn_body"), refused));
+  EXPECT_FALSE(refused.response.success);
+  EXPECT_EQ(refused.response.message,
+            "sensors[0] (name 'imu_raw').rate 30 Hz: its samples are not a whole number of steps "
+            "of 0.01 s apart");
+
+  rigid_body_sim::SpawnBody spawn;
+  spawn.request.body_yaml = craft + "50}]}";
+  ASSERT_TRUE(ros::service::call(node.sim.Name("spawn_body"), spawn));
+  ASSERT_TRUE(spawn.response.success) << spawn.response.message;
+  ros::NodeHandle nh;
+  Recorder<sensor_msgs::Imu> imu;
+  imu.Start(nh, node.sim.Name("craft/imu_raw"));
+  ASSERT_TRUE(WaitFor([&] { return imu.NumPublishers() > 0; }, rbs_test::kStartupTimeout));
+  // At 50 Hz a sample every other step: two in four steps, at rest in free
+  // fall (f = 0) at its site.
+  ASSERT_TRUE(node.Step(4));
+  ASSERT_TRUE(imu.WaitCount(2));
+  SleepWall(rbs_test::kSettle);
+  const std::vector<sensor_msgs::Imu> samples = imu.Snapshot();
+  EXPECT_EQ(samples.size(), 2u);
+  for (const sensor_msgs::Imu& msg : samples) {
+    EXPECT_EQ(msg.header.frame_id, "craft_imu");
+    EXPECT_EQ(node.StepOf(msg.header.stamp) % 2, 0);
+    EXPECT_EQ(V(msg.linear_acceleration), Eigen::Vector3d::Zero());
+    EXPECT_EQ(V(msg.angular_velocity), Eigen::Vector3d::Zero());
+  }
+  rigid_body_sim::DeleteBody remove;
+  remove.request.body = "craft";
+  ASSERT_TRUE(ros::service::call(node.sim.Name("delete_body"), remove));
+  EXPECT_TRUE(remove.response.success) << remove.response.message;
 }
 
 }  // namespace
