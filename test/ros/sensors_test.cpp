@@ -10,6 +10,7 @@
 //   α = R I⁻¹ Rᵀ (τ − ω × L),  r = R r̄,  R_WS = R R_BS,
 // and its exact motion capture the site's pose and twist. "resting" (no
 // gravity, at rest) carries noisy sensors whose samples are their errors.
+#include <array>
 #include <cmath>
 #include <iomanip>
 #include <map>
@@ -204,6 +205,20 @@ double RootMeanSquare(const std::vector<double>& values) {
   return std::sqrt(sum_sq / values.size());
 }
 
+// The overlapping Allan variance of `rates` over clusters of m samples:
+// ½ mean(((S_(k+2m) − 2 S_(k+m) + S_k) / m)²), S the running sums.
+double AllanVariance(const std::vector<double>& rates, std::size_t m) {
+  std::vector<double> sums(1, 0.0);
+  for (const double rate : rates) sums.push_back(sums.back() + rate);
+  double sum_sq = 0.0;
+  const std::size_t count = sums.size() - 2 * m;
+  for (std::size_t k = 0; k < count; ++k) {
+    const double difference = (sums[k + 2 * m] - 2.0 * sums[k + m] + sums[k]) / m;
+    sum_sq += difference * difference;
+  }
+  return 0.5 * sum_sq / count;
+}
+
 TEST(Sensors, NoisySensorsHaveTheirStddevsCovariancesAndTurnOnBias) {
   Node& node = NodeA();
   ASSERT_TRUE(node.sim.EnsureConnected());
@@ -230,8 +245,12 @@ TEST(Sensors, NoisySensorsHaveTheirStddevsCovariancesAndTurnOnBias) {
   const double gyro_sigma = 0.002 * std::sqrt(50.0);
   const double accel_sigma = 0.03 * std::sqrt(50.0);
   std::vector<double> gyro, accel;
+  std::array<std::vector<double>, 3> gyro_axes;
   for (const sensor_msgs::Imu& msg : white.Snapshot()) {
     WhiteSamplesA()[node.StepOf(msg.header.stamp)] = msg;
+    gyro_axes[0].push_back(msg.angular_velocity.x);
+    gyro_axes[1].push_back(msg.angular_velocity.y);
+    gyro_axes[2].push_back(msg.angular_velocity.z);
     for (const double v : {msg.angular_velocity.x, msg.angular_velocity.y, msg.angular_velocity.z})
       gyro.push_back(v);
     for (const double v :
@@ -247,6 +266,13 @@ TEST(Sensors, NoisySensorsHaveTheirStddevsCovariancesAndTurnOnBias) {
   EXPECT_NEAR(gyro_ratio, 1.0, 0.05);
   EXPECT_NEAR(accel_ratio, 1.0, 0.05);
   RecordProperty("gyro_stddev_ratio", Scientific(gyro_ratio));
+  // The Allan deviation at τ = 1 s (50 samples) is the noise density, within
+  // 10 % (averaged over the three axes).
+  double allan_variance = 0.0;
+  for (const std::vector<double>& axis : gyro_axes) allan_variance += AllanVariance(axis, 50) / 3;
+  const double allan_ratio = std::sqrt(allan_variance) / 0.002;
+  EXPECT_NEAR(allan_ratio, 1.0, 0.1);
+  RecordProperty("gyro_allan_1s_ratio", Scientific(allan_ratio));
   RecordProperty("accel_stddev_ratio", Scientific(accel_ratio));
 
   // Motion capture: each stddev, and the variances on the diagonals.
