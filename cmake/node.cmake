@@ -20,6 +20,8 @@ add_library(rigid_body_sim_ros
   src/ros/body_graph_table.cpp
   src/ros/scene_map_list.cpp
   src/ros/scene_actuators.cpp
+  src/ros/scene_sensors.cpp
+  src/ros/site_sensors.cpp
   src/ros/scene_frames.cpp
   src/ros/scene_inertial.cpp
   src/ros/scene_urdf.cpp

@@ -24,7 +24,8 @@ set(_rbs_node_gtests
   properties
   sim_time
   clock_order
-  thrusters)
+  thrusters
+  sensors)
 
 foreach(_t ${_rbs_node_gtests})
   add_rostest_gtest(${_t}_test test/ros/${_t}.test test/ros/${_t}_test.cpp)
@@ -76,7 +77,7 @@ catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_in
   test/ros/urdf_file_policy_test.cpp
   test/ros/wrench_frame_test.cpp test/ros/scene_frames_test.cpp
   test/ros/static_frames_test.cpp test/ros/actuator_command_check_test.cpp
-  test/ros/scene_actuators_test.cpp)
+  test/ros/scene_actuators_test.cpp test/ros/scene_sensors_test.cpp)
 # urdf_body_test and scene_frames_test read config/quadrotor.urdf from the source tree.
 target_compile_definitions(ros_units_test PRIVATE
   RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

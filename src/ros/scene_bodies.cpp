@@ -18,6 +18,7 @@
 #include "rigid_body_sim/ros/scene_error.h"
 #include "rigid_body_sim/ros/scene_frames.h"
 #include "rigid_body_sim/ros/scene_inertial.h"
+#include "rigid_body_sim/ros/scene_sensors.h"
 #include "rigid_body_sim/ros/scene_urdf.h"
 
 namespace rigid_body_sim {
@@ -114,6 +115,7 @@ void CheckKeys(const XmlRpcValue& body, const std::set<std::string>& kind_keys) 
                                                     "sites",
                                                     "namespace",
                                                     "actuators",
+                                                    "sensors",
                                                     "drag"};
   for (const auto& member : body) {
     if (kCommonKeys.count(member.first) || kind_keys.count(member.first)) continue;
@@ -259,6 +261,10 @@ SceneBody ReadBody(const XmlRpcValue& body, const std::string& name,
   const core::BodyProperties properties = ReadProperties(body);
   std::vector<core::ThrusterDef> actuators;
   if (body.hasMember("actuators")) actuators = ReadActuators(body["actuators"]);
+  if (body.hasMember("sensors")) {
+    graph.sensors = ReadSensors(body["sensors"]);
+    CheckSensorSites(graph.sensors, frames);
+  }
 
   // Unique names and a state the world's step can take are the World's to check.
   const core::BodyState initial_state = core::StateAtFrameOrigin(

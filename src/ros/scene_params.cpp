@@ -3,6 +3,8 @@
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/body_graph_table.h"
 #include "rigid_body_sim/ros/imu_noise_params.h"
+#include "rigid_body_sim/ros/scene_error.h"
+#include "rigid_body_sim/ros/scene_sensors.h"
 
 namespace rigid_body_sim {
 
@@ -13,6 +15,14 @@ Scene LoadScene(const ros::NodeHandle& private_nh) {
   // No `bodies` is an empty world, as an empty list is: bodies come by ~spawn_body.
   XmlRpc::XmlRpcValue bodies;
   if (private_nh.getParam("bodies", bodies)) scene.bodies = ParseBodies(bodies);
+  for (std::size_t i = 0; i < scene.bodies.size(); ++i) {
+    try {
+      CheckSensorRates(scene.bodies[i].graph.sensors, 1.0 / scene.settings.rate_hz);
+    } catch (const SceneError& error) {
+      throw SceneError("bodies[" + std::to_string(i) + "] (name '" +
+                       scene.bodies[i].def.model.name() + "'): " + error.what());
+    }
+  }
   if (scene.settings.shard.count > 1) {
     // Every shard checks the whole scene (names, states), with its indices,
     // as a World of the default WorldDef would.

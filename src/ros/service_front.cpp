@@ -10,6 +10,7 @@
 #include "rigid_body_sim/ros/conversions.h"
 #include "rigid_body_sim/ros/join.h"
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/scene_sensors.h"
 #include "rigid_body_sim/ros/service_reply.h"
 #include "rigid_body_sim/ros/wrench_job_request.h"
 #include "rigid_body_sim/ros/yaml_value.h"
@@ -288,6 +289,7 @@ bool ServiceFront::AddSpawnedBody(SceneBody body, std::string* message) {
   std::size_t index = 0;
   try {
     if (world_.size() >= kMaxSceneBodies) throw SceneError(BodyLimitMessage(world_.size()));
+    CheckSensorRates(body.graph.sensors, world_.options().dt_s);
     index = editor_.AddBody(std::move(body));
   } catch (const std::exception& error) {  // SceneError, or the world refusing the body
     *message = error.what();

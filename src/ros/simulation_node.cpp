@@ -52,14 +52,19 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
           [this](const std::string& body, const ActuatorCommand& msg) {
             front_.OnActuatorCommand(body, msg);
           }),
+      sensors_(settings_, world_, graph_),
       static_frames_(settings_.tf_prefix, world_, graph_),
       diagnostics_(private_nh, settings_, world_),
       editor_(&world_, &graph_,
-              [this](const WorldEvent& event) { diagnostics_.OnWorldEvent(event, world_); }),
+              [this](const WorldEvent& event) {
+                if (event.kind == WorldEvent::Kind::kReset) sensors_.Restart(world_.step_count());
+                diagnostics_.OnWorldEvent(event, world_);
+              }),
       paused_(settings_.start_paused),
       front_(private_nh, settings_, this, &editor_, &intake_) {
   // Each follows every spawn and delete.
   world_.AddListener(&publisher_);
+  world_.AddListener(&sensors_);
   world_.AddListener(&static_frames_);
   world_.AddListener(&diagnostics_);
   if (settings_.lockstep.enabled) {
@@ -142,12 +147,17 @@ void SimulationNode::HoldStartState() {
 }
 
 void SimulationNode::StepOnce(bool publishes_after) {
-  // The IMU and the applied wrench read the step that reached a published state.
-  if (publishes_after && publisher_.wants_step_record()) world_.RecordNextStep();
+  // The IMU and the applied wrench read the step that reached a published
+  // state, the sensors the step that reached their sample.
+  if ((publishes_after && publisher_.wants_step_record()) ||
+      sensors_.SamplesAt(world_.step_count() + 1)) {
+    world_.RecordNextStep();
+  }
   const Clock::time_point start = Clock::now();
   world_.Step();
   diagnostics_.RecordStep(world_, Clock::now() - start, Stamp());
   if (lattice_.IsClockTick(world_.step_count())) clock_.Publish(Stamp());
+  sensors_.Sample(world_, Stamp());
 }
 
 void SimulationNode::PublishCycle() {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "rigid_body_sim/core/body_def.h"
+#include "rigid_body_sim/ros/scene_sensors.h"
 
 namespace rigid_body_sim {
 
@@ -31,6 +32,8 @@ struct BodyGraphNames {
   // its held joints (a URDF body given a `namespace`), for a
   // robot_state_publisher in that namespace.
   bool own_joint_states = false;
+  // The sensors published in the body's topic namespace, each on its name.
+  std::vector<SiteSensorDef> sensors;
 };
 
 struct SceneBody {

@@ -35,6 +35,7 @@
 #include "rigid_body_sim/ros/node_status.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/service_front.h"
+#include "rigid_body_sim/ros/site_sensors.h"
 #include "rigid_body_sim/ros/state_hash_worker.h"
 #include "rigid_body_sim/ros/state_publisher.h"
 #include "rigid_body_sim/ros/static_frames.h"
@@ -89,6 +90,7 @@ class SimulationNode : public LoopControl {
   // advertised, so /clock goes out ahead of the outputs of its stamp.
   ClockPublisher clock_;
   StatePublisher publisher_;
+  SiteSensors sensors_;
   StaticFrames static_frames_;
   StateHashWorker state_hashes_;
   NodeDiagnostics diagnostics_;
