@@ -2,7 +2,6 @@
 
 #include <string>
 
-#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
 #include "rigid_body_sim/ros/scene_map_list.h"
@@ -11,35 +10,14 @@ namespace rigid_body_sim {
 
 using XmlRpc::XmlRpcValue;
 
-namespace {
-
-// The string `member` of `entry` (named `key` in errors): non-empty, at most
-// kMaxBodyNameLength characters.
-std::string ReadName(const XmlRpcValue& entry, const char* member, const std::string& key) {
-  if (!entry.hasMember(member)) throw SceneError(key + " is missing");
-  const XmlRpcValue& value = entry[member];
-  if (value.getType() != XmlRpcValue::TypeString ||
-      static_cast<const std::string&>(value).empty()) {
-    throw SceneError(key + " must be a non-empty string, got " + Describe(value));
-  }
-  const std::string& name = value;
-  if (name.size() > core::kMaxBodyNameLength) {
-    throw SceneError(key + " is longer than " + std::to_string(core::kMaxBodyNameLength) +
-                     " characters");
-  }
-  return name;
-}
-
-}  // namespace
-
 std::vector<core::ThrusterDef> ReadActuators(const XmlRpcValue& value) {
   std::vector<core::ThrusterDef> thrusters;
   ReadMapList(value, "actuators", "{name, site, max_thrust, ...}", kMaxActuatorsPerBody,
               {"name", "site", "max_thrust", "min_thrust", "time_constant", "torque_coefficient"},
               [&thrusters](const XmlRpcValue& entry, const std::string& key) {
                 core::ThrusterDef thruster;
-                thruster.name = ReadName(entry, "name", key + ".name");
-                thruster.site = ReadName(entry, "site", key + ".site");
+                thruster.name = ReadShortString(entry, "name", key + ".name");
+                thruster.site = ReadShortString(entry, "site", key + ".site");
                 if (!entry.hasMember("max_thrust")) {
                   throw SceneError(key + ".max_thrust is missing");
                 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
 
@@ -26,6 +27,7 @@ void ReadMapList(const XmlRpcValue& value, const std::string& list_key, const st
       throw SceneError(key + " must be a map " + shape + ", got " + Describe(entry));
     }
     for (const auto& member : entry) {
+      if (known_keys.empty()) break;
       if (std::find(known_keys.begin(), known_keys.end(), member.first) == known_keys.end()) {
         std::string known;
         for (const std::string& name : known_keys) known += (known.empty() ? "" : ", ") + name;
@@ -34,6 +36,21 @@ void ReadMapList(const XmlRpcValue& value, const std::string& list_key, const st
     }
     read(entry, key);
   }
+}
+
+std::string ReadShortString(const XmlRpcValue& entry, const char* member, const std::string& key) {
+  if (!entry.hasMember(member)) throw SceneError(key + " is missing");
+  const XmlRpcValue& value = entry[member];
+  if (value.getType() != XmlRpcValue::TypeString ||
+      static_cast<const std::string&>(value).empty()) {
+    throw SceneError(key + " must be a non-empty string, got " + Describe(value));
+  }
+  const std::string& text = value;
+  if (text.size() > core::kMaxBodyNameLength) {
+    throw SceneError(key + " is longer than " + std::to_string(core::kMaxBodyNameLength) +
+                     " characters");
+  }
+  return text;
 }
 
 }  // namespace rigid_body_sim

@@ -7,9 +7,9 @@
 #include <string>
 
 #include "rigid_body_sim/core/format_number.h"
-#include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/param_values.h"
 #include "rigid_body_sim/ros/scene_error.h"
+#include "rigid_body_sim/ros/scene_map_list.h"
 
 namespace rigid_body_sim {
 
@@ -44,22 +44,6 @@ std::string Joined(const std::set<std::string>& a, const std::set<std::string>& 
   return list;
 }
 
-// The string `member` of `entry` (named `key` in errors): non-empty, at most
-// kMaxBodyNameLength characters.
-std::string ReadString(const XmlRpcValue& entry, const char* member, const std::string& key) {
-  const XmlRpcValue& value = entry[member];
-  if (value.getType() != XmlRpcValue::TypeString ||
-      static_cast<const std::string&>(value).empty()) {
-    throw SceneError(key + " must be a non-empty string, got " + Describe(value));
-  }
-  const std::string& text = value;
-  if (text.size() > core::kMaxBodyNameLength) {
-    throw SceneError(key + " is longer than " + std::to_string(core::kMaxBodyNameLength) +
-                     " characters");
-  }
-  return text;
-}
-
 // A topic name of one segment: a letter, then letters, digits and '_'.
 bool IsTopicSegment(const std::string& name) {
   if (!std::isalpha(static_cast<unsigned char>(name[0]))) return false;
@@ -88,9 +72,6 @@ std::uint64_t ReadSeed(const XmlRpcValue& entry, const std::string& key) {
 }
 
 SiteSensorDef ReadSensor(const XmlRpcValue& entry, const std::string& key) {
-  if (entry.getType() != XmlRpcValue::TypeStruct) {
-    throw SceneError(key + " must be a map {type, name, rate, ...}, got " + Describe(entry));
-  }
   if (!entry.hasMember("type")) throw SceneError(key + ".type is missing");
   const XmlRpcValue& type = entry["type"];
   const auto found = type.getType() == XmlRpcValue::TypeString
@@ -109,8 +90,7 @@ SiteSensorDef ReadSensor(const XmlRpcValue& entry, const std::string& key) {
                        ": " + Joined(kCommonKeys, type_keys) + ")");
     }
   }
-  if (!entry.hasMember("name")) throw SceneError(key + ".name is missing");
-  sensor.name = ReadString(entry, "name", key + ".name");
+  sensor.name = ReadShortString(entry, "name", key + ".name");
   if (!IsTopicSegment(sensor.name)) {
     throw SceneError(key + ".name '" + sensor.name +
                      "' is not a topic name of one segment (a letter, then letters, digits "
@@ -119,7 +99,7 @@ SiteSensorDef ReadSensor(const XmlRpcValue& entry, const std::string& key) {
   if (kReservedNames.count(sensor.name) != 0) {
     throw SceneError(key + ".name '" + sensor.name + "' is one of the body's own topics");
   }
-  if (entry.hasMember("site")) sensor.site = ReadString(entry, "site", key + ".site");
+  if (entry.hasMember("site")) sensor.site = ReadShortString(entry, "site", key + ".site");
   if (!entry.hasMember("rate")) throw SceneError(key + ".rate is missing");
   sensor.rate_hz = ReadPositiveNumber(entry["rate"], key + ".rate");
   sensor.seed = ReadSeed(entry, key);
@@ -144,22 +124,17 @@ SiteSensorDef ReadSensor(const XmlRpcValue& entry, const std::string& key) {
 }  // namespace
 
 std::vector<SiteSensorDef> ReadSensors(const XmlRpcValue& value) {
-  if (value.getType() != XmlRpcValue::TypeArray) {
-    throw SceneError("sensors must be a list of {type, name, rate, ...}, got " + Describe(value));
-  }
-  if (static_cast<std::size_t>(value.size()) > kMaxSensorsPerBody) {
-    throw SceneError("sensors has " + std::to_string(value.size()) + " entries, at most " +
-                     std::to_string(kMaxSensorsPerBody) + " are allowed");
-  }
   std::vector<SiteSensorDef> sensors;
   std::set<std::string> names;
-  for (int k = 0; k < value.size(); ++k) {
-    const std::string key = "sensors[" + std::to_string(k) + "]";
-    sensors.push_back(ReadSensor(value[k], key));
-    if (!names.insert(sensors.back().name).second) {
-      throw SceneError(key + ".name '" + sensors.back().name + "' is used by another sensor");
-    }
-  }
+  // Each entry's keys depend on its type: ReadSensor checks them.
+  ReadMapList(
+      value, "sensors", "{type, name, rate, ...}", kMaxSensorsPerBody, {},
+      [&sensors, &names](const XmlRpcValue& entry, const std::string& key) {
+        sensors.push_back(ReadSensor(entry, key));
+        if (!names.insert(sensors.back().name).second) {
+          throw SceneError(key + ".name '" + sensors.back().name + "' is used by another sensor");
+        }
+      });
   return sensors;
 }
 
