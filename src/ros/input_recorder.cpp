@@ -33,6 +33,7 @@ InputRecorder::InputRecorder(const std::string& path, RecordedParameters paramet
   try {
     bag_->bag.open(path_, rosbag::bagmode::Write);
   } catch (const rosbag::BagException& error) {
+    static_cast<void>(bag_.release());  // as after a failed write (Run)
     throw std::runtime_error("~record: cannot write the bag '" + path_ + "': " + error.what());
   }
   thread_ = std::thread([this] { Run(); });
@@ -130,11 +131,9 @@ void InputRecorder::Run() {
     if (!lock.owns_lock()) lock.lock();
     error_ = "~record: writing '" + path_ + "' failed, the recording stopped: " + error.what();
     queue_.clear();
-    lock.unlock();
-    try {
-      bag_->bag.close();
-    } catch (const rosbag::BagException&) {  // the error above says it already
-    }
+    // rosbag::Bag's close, and so its destructor, would write the index
+    // again and throw again: the broken bag is left open, not destroyed.
+    static_cast<void>(bag_.release());
   }
 }
 

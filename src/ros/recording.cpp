@@ -1,6 +1,7 @@
 #include "rigid_body_sim/ros/recording.h"
 
 #include <algorithm>
+#include <fstream>
 #include <optional>
 
 #include <rigid_body_sim/RecordedParameters.h>
@@ -16,6 +17,15 @@ namespace {
 
 std::uint64_t SequenceOf(const Recording::Event& event) {
   return std::visit([](const auto& message) { return message.sequence; }, event);
+}
+
+// Whether the file at `path` begins as every bag of format 2.0 does.
+bool StartsAsBag(const std::string& path) {
+  constexpr char kBagVersionLine[] = "#ROSBAG V2.0\n";
+  std::ifstream file(path, std::ios::binary);
+  std::string start(sizeof kBagVersionLine - 1, '\0');
+  file.read(start.data(), static_cast<std::streamsize>(start.size()));
+  return file && start == kBagVersionLine;
 }
 
 // The topics of `bag` and their types, "topic (type)", for a refusal.
@@ -56,7 +66,9 @@ Recording ReadRecording(const std::string& path) {
     throw RecordingError("'" + path +
                          "' is truncated: the bag has no index (it was not closed whole)");
   } catch (const rosbag::BagException& error) {
-    throw RecordingError("'" + path + "' cannot be read as a bag: " + error.what());
+    if (!StartsAsBag(path)) throw RecordingError("'" + path + "' is not a bag: " + error.what());
+    throw RecordingError("'" + path + "' is truncated or damaged: its index cannot be read (" +
+                         error.what() + ")");
   }
   if (!HasTopic<RecordedParameters>(bag, kRecordParametersTopic) ||
       !HasTopic<RecordedInput>(bag, kRecordInputsTopic)) {

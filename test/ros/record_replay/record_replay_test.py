@@ -16,6 +16,7 @@ import os
 import shutil
 import struct
 import subprocess
+import sys
 import tempfile
 import time
 import unittest
@@ -45,6 +46,7 @@ def replay(bag):
     """The replay's exit code, stdout and stderr."""
     done = subprocess.run(['rosrun', 'rigid_body_sim', 'replay', bag], capture_output=True,
                           text=True, timeout=120)
+    sys.stderr.write('exit %d: %s%s' % (done.returncode, done.stdout, done.stderr))
     return done.returncode, done.stdout, done.stderr
 
 
@@ -136,12 +138,28 @@ class RecordReplay(unittest.TestCase):
         self.assertIn('(step %d,' % first_after, out)
 
     def test_4_truncated_bag_is_refused(self):
-        truncated = os.path.join(self.dir, 'truncated.bag')
-        with open(self.bag, 'rb') as whole, open(truncated, 'wb') as part:
+        half = os.path.join(self.dir, 'half.bag')
+        with open(self.bag, 'rb') as whole, open(half, 'wb') as part:
             part.write(whole.read(os.path.getsize(self.bag) // 2))
-        code, out, err = replay(truncated)
+        code, out, err = replay(half)
         self.assertEqual(code, 2, out + err)
-        self.assertIn('truncated', err)
+        self.assertIn('is truncated or damaged: its index cannot be read', err)
+        # Cut after its last input: the bag is whole, the recording is not.
+        unended = os.path.join(self.dir, 'unended.bag')
+        with rosbag.Bag(self.bag) as bag, rosbag.Bag(unended, 'w') as out_bag:
+            for topic, msg, t in bag.read_messages():
+                if topic != '/record/inputs' or msg.kind != RecordedInput.END:
+                    out_bag.write(topic, msg, t)
+        code, out, err = replay(unended)
+        self.assertEqual(code, 2, out + err)
+        self.assertIn('is truncated: it ends after', err)
+        # And one that is not a bag at all.
+        text = os.path.join(self.dir, 'text.bag')
+        with open(text, 'w') as not_a_bag:
+            not_a_bag.write('hello\n')
+        code, out, err = replay(text)
+        self.assertEqual(code, 2, out + err)
+        self.assertIn('is not a bag', err)
 
     def test_5_bag_of_other_topics_is_refused(self):
         other = os.path.join(self.dir, 'other.bag')
