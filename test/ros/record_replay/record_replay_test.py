@@ -3,9 +3,10 @@
 replay"; record_replay.test):
 
 - the quadrotor flies in lockstep with its controller (actuator commands),
-  in gusts, while this test pushes it (~base_link/wrench), spawns and deletes
-  a body, reconfigures the node (gravity, wind, integrator) and resets it, at
-  whatever steps they land; the node records to a bag;
+  in gusts, while this test pushes it (~base_link/wrench, a wrench job and
+  its clearing), spawns and deletes a body, reconfigures the node (gravity,
+  wind, integrator), pauses, steps and resumes it, resets it and sets the
+  body's state, at whatever steps they land; the node records to a bag;
 - the replay, with no controller, matches every recorded state hash: exit 0;
 - one recorded actuator command altered by one bit: the replay names the
   first publish cycle after it, exit 1;
@@ -90,6 +91,12 @@ class RecordReplay(unittest.TestCase):
         time.sleep(0.2)
         sim.delete('ball')
         time.sleep(0.2)
+        sim.push('base_link', (0.0, 0.5, 0.0), point=(0.1, 0.0, 0.0), duration=0.3)
+        time.sleep(0.1)
+        sim.clear_body_wrenches('base_link')
+        sim.pause()
+        sim.step(7)
+        sim.resume()
         sim.reset()
         sim.set_body_state('base_link', position=(0.0, 0.0, 0.5))
         time.sleep(0.5)
@@ -106,8 +113,9 @@ class RecordReplay(unittest.TestCase):
             self.assertGreater(bag.get_message_count('/record/cycles'), 100)
             self.assertEqual(bag.get_message_count('/record/cycles'),
                              bag.get_message_count('/record/bodies'))
-        for kind in ('BODY_WRENCH', 'ACTUATOR_COMMANDS', 'SPAWN', 'DELETE', 'RESET',
-                     'RECONFIGURE', 'BODY_STATE', 'END'):
+        for kind in ('BODY_WRENCH', 'ACTUATOR_COMMANDS', 'WRENCH_JOB', 'CLEAR_BODY_WRENCHES',
+                     'SPAWN', 'DELETE', 'RESET', 'RECONFIGURE', 'BODY_STATE', 'PAUSE', 'STEP',
+                     'RESUME', 'END'):
             self.assertIn(getattr(RecordedInput, kind), kinds, kind)
 
     def test_2_replay_matches_every_cycle(self):
