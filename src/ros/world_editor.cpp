@@ -17,13 +17,13 @@ WorldEditor::WorldEditor(core::World* world, BodyGraphTable* graph, EventSink on
 
 void WorldEditor::HoldWrench(const core::ParticleWrench& wrench) {
   world_.HoldWrench(wrench);
-  if (recorder_ != nullptr) Record(RecordedParticleWrench(world_, wrench));
+  Record([&] { return RecordedParticleWrench(world_, wrench); });
   Notify(WorldEvent::Kind::kWrenchHeld, wrench.body);
 }
 
 void WorldEditor::HoldBodyWrench(const core::BodyWrench& wrench) {
   world_.HoldBodyWrench(wrench);
-  if (recorder_ != nullptr) Record(RecordedBodyWrench(world_, wrench));
+  Record([&] { return RecordedBodyWrench(world_, wrench); });
   Notify(WorldEvent::Kind::kWrenchHeld, wrench.body);
 }
 
@@ -32,9 +32,7 @@ void WorldEditor::HoldActuatorCommands(core::BodyId body, const std::vector<std:
   for (std::size_t i = 0; i < actuators.size(); ++i) {
     world_.HoldActuatorCommand(body, actuators[i], commands_n[i], start_s);
   }
-  if (recorder_ != nullptr) {
-    Record(RecordedActuatorCommands(world_, body, actuators, commands_n, start_s));
-  }
+  Record([&] { return RecordedActuatorCommands(world_, body, actuators, commands_n, start_s); });
   Notify(WorldEvent::Kind::kWrenchHeld, body);
 }
 
@@ -42,33 +40,33 @@ core::JobRefusal WorldEditor::AddWrenchJob(const core::WrenchJob& job) {
   const core::JobRefusal refusal = world_.AddWrenchJob(job);
   if (refusal != core::JobRefusal::kNone) return refusal;
   Notify(WorldEvent::Kind::kWrenchHeld, job.body);
-  if (recorder_ != nullptr) Record(RecordedWrenchJob(world_, job));
+  Record([&] { return RecordedWrenchJob(world_, job); });
   return refusal;
 }
 
 void WorldEditor::ClearWrenches() {
   world_.ClearWrenches();
-  Record(RecordedOfKind(RecordedInput::CLEAR_WRENCHES));
+  Record([&] { return RecordedOfKind(RecordedInput::CLEAR_WRENCHES); });
   Notify(WorldEvent::Kind::kWrenchesCleared);
 }
 
 void WorldEditor::ClearBodyWrenches(core::BodyId body) {
   world_.ClearBodyWrenches(body);
-  if (recorder_ != nullptr) {
-    Record(RecordedOfKind(RecordedInput::CLEAR_BODY_WRENCHES, world_.model(body).name()));
-  }
+  Record([&] {
+    return RecordedOfKind(RecordedInput::CLEAR_BODY_WRENCHES, world_.model(body).name());
+  });
   Notify(WorldEvent::Kind::kBodyWrenchesCleared, body);
 }
 
 void WorldEditor::SetBodyState(core::BodyId body, const core::BodyState& state) {
   world_.SetBodyState(body, state);
-  if (recorder_ != nullptr) Record(RecordedBodyState(world_, body, state));
+  Record([&] { return RecordedBodyState(world_, body, state); });
   Notify(WorldEvent::Kind::kBodyStateSet, body);
 }
 
 void WorldEditor::Reset() {
   world_.Reset();
-  Record(RecordedOfKind(RecordedInput::RESET));
+  Record([&] { return RecordedOfKind(RecordedInput::RESET); });
   Notify(WorldEvent::Kind::kReset);
 }
 
@@ -82,11 +80,11 @@ std::size_t WorldEditor::AddBody(SceneBody body, const std::string& body_yaml) {
     throw;
   }
   body_count_ = world_.size();
-  if (recorder_ != nullptr) {
+  Record([&] {
     RecordedInput input = RecordedOfKind(RecordedInput::SPAWN, name);
     input.text = body_yaml;
-    Record(std::move(input));
-  }
+    return input;
+  });
   return world_.size() - 1;
 }
 
@@ -95,7 +93,7 @@ void WorldEditor::RemoveBody(core::BodyId body) {
   world_.RemoveBody(body);
   graph_.Remove(name);
   body_count_ = world_.size();
-  Record(RecordedOfKind(RecordedInput::DELETE, name));
+  Record([&] { return RecordedOfKind(RecordedInput::DELETE, name); });
 }
 
 }  // namespace rigid_body_sim

@@ -14,7 +14,6 @@
 #include <cstddef>
 #include <functional>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include "rigid_body_sim/core/world.h"
@@ -62,9 +61,11 @@ class WorldEditor {
 
  private:
   void Notify(WorldEvent::Kind kind, core::BodyId body = {}) { on_event_(WorldEvent{kind, body}); }
-  // `input` acted now, before the next step.
-  void Record(RecordedInput input) {
-    if (recorder_ != nullptr) recorder_->Record(std::move(input), world_.step_count());
+  // Records `make_input()`, the input that acted now, before the next step,
+  // when the node records (made only then).
+  template <typename MakeInput>
+  void Record(MakeInput make_input) {
+    if (recorder_ != nullptr) recorder_->Record(make_input(), world_.step_count());
   }
 
   core::World& world_;
