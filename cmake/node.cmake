@@ -55,6 +55,11 @@ add_library(rigid_body_sim_ros
   src/ros/request_lane.cpp
   src/ros/step_lattice.cpp
   src/ros/lockstep_driver.cpp
+  src/ros/input_recorder.cpp
+  src/ros/recorded_input.cpp
+  src/ros/recorded_parameters.cpp
+  src/ros/recording.cpp
+  src/ros/replay.cpp
   src/ros/world_editor.cpp
   src/ros/service_front.cpp
   src/ros/runtime_settings.cpp
@@ -73,7 +78,12 @@ target_link_libraries(rigid_body_sim_node rigid_body_sim_ros rigid_body_sim_core
 add_dependencies(rigid_body_sim_node
   ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 
-install(TARGETS rigid_body_sim_core rigid_body_sim_ros rigid_body_sim_node
+# replay: a ~record bag done again without the node (src/replay_main.cpp).
+add_executable(replay src/replay_main.cpp)
+target_link_libraries(replay rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES})
+add_dependencies(replay ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
+
+install(TARGETS rigid_body_sim_core rigid_body_sim_ros rigid_body_sim_node replay
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

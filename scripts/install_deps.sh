@@ -12,7 +12,7 @@ packages=(
   libdiagnostic-msgs-dev libros-rosgraph-msgs-dev libnav-msgs-dev libsensor-msgs-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   rosbash python3-roslib libroslib-dev liburdf-dev liburdfdom-dev liburdfdom-headers-dev
-  ros-robot-state-publisher
+  ros-robot-state-publisher librosbag-dev librosbag-storage-dev python3-rosbag
   python3-geometry-msgs python3-std-srvs python3-diagnostic-msgs
   python3-tf2-msgs python3-visualization-msgs python3-rosgraph-msgs
   python3-nav-msgs python3-sensor-msgs python3-rospy python3-numpy python3-yaml

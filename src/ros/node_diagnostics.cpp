@@ -159,6 +159,8 @@ void NodeDiagnostics::Compose(const NodeStatus& node, const core::World& world,
                    std::to_string(world.frozen_count()) +
                        " body(ies) frozen at their last finite state; ~reset or "
                        "~set_body_state brings them back");
+  } else if (node.record_error) {  // the run goes on, unrecorded
+    status.summary(diagnostic_msgs::DiagnosticStatus::ERROR, *node.record_error);
   } else if (lockstep_timed_out) {  // in the last report period
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN,
                    "lockstep: a controller did not answer within ~lockstep_timeout");
@@ -208,6 +210,7 @@ void NodeDiagnostics::Compose(const NodeStatus& node, const core::World& world,
     status.addf("state_hash_stamp", "%u.%09u", node.state_hash->stamp.sec,
                 node.state_hash->stamp.nsec);
   }
+  if (node.record_error) status.add("record_error", *node.record_error);
   status.add("dropped_couples", world.dropped_couple_count());
   status.add("frozen_bodies", world.frozen_count());
   for (std::size_t body = 0; body < world.size(); ++body) {

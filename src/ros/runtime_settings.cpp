@@ -4,12 +4,14 @@
 #include "rigid_body_sim/ros/simulation_node.h"
 
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/recorded_input.h"
 
 namespace rigid_body_sim {
 
 void SimulationNode::ApplyRuntimeSettings(const NodeSettings& next) {
   // Callbacks run between steps, so each change is in force from the next one;
   // the step count, and so every stamp t0 + n·dt, goes on untouched.
+  if (recorder_) recorder_->Record(RecordedReconfiguration(settings_, next), world_.step_count());
   if (next.real_time_factor != settings_.real_time_factor) {
     pacer_.SetRealTimeFactor(next.real_time_factor, Clock::now());
   }

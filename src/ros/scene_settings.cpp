@@ -249,7 +249,21 @@ NodeSettings ReadSettings(const ros::NodeHandle& private_nh) {
   settings.shard = ReadShard(params);
   settings.spawn_file_roots = params.StringList("spawn_file_roots");
   CheckSpawnFileRoots(settings.spawn_file_roots);
+  settings.record_path = params.String("record", "");
   return settings;
+}
+
+core::WorldDef MakeWorldDef(const NodeSettings& settings) {
+  core::WorldDef def;
+  def.integrator = settings.integrator;
+  def.dt_s = 1.0 / settings.rate_hz;
+  def.gravity = settings.gravity_mps2;
+  def.wrench_timeout_s = settings.wrench_timeout_s;
+  def.max_substeps = settings.max_substeps;
+  def.threads = settings.threads;
+  def.wind = settings.wind;
+  def.wind.velocity_mps = settings.wind_mps;  // the runtime key's, read from wind.velocity
+  return def;
 }
 
 }  // namespace rigid_body_sim

@@ -275,8 +275,10 @@ bool ServiceFront::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response&
       message = error.what();
     }
     if (body) {
-      const std::optional<bool> taken = requests_.OnSteppingThread(
-          [this, &body, &message] { return AddSpawnedBody(std::move(*body), &message); });
+      const std::optional<bool> taken =
+          requests_.OnSteppingThread([this, &body, &request, &message] {
+            return AddSpawnedBody(std::move(*body), request.body_yaml, &message);
+          });
       if (!taken) message = "the node is shutting down";
       added = taken.value_or(false);
     }
@@ -285,12 +287,13 @@ bool ServiceFront::OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response&
   return Reply("spawn_body", added, std::move(message), &response);
 }
 
-bool ServiceFront::AddSpawnedBody(SceneBody body, std::string* message) {
+bool ServiceFront::AddSpawnedBody(SceneBody body, const std::string& body_yaml,
+                                  std::string* message) {
   std::size_t index = 0;
   try {
     if (world_.size() >= kMaxSceneBodies) throw SceneError(BodyLimitMessage(world_.size()));
     CheckSensorRates(body.graph.sensors, world_.options().dt_s);
-    index = editor_.AddBody(std::move(body));
+    index = editor_.AddBody(std::move(body), body_yaml);
   } catch (const std::exception& error) {  // SceneError, or the world refusing the body
     *message = error.what();
     return false;

@@ -9,7 +9,10 @@
 #include <ros/callback_queue.h>
 
 #include "rigid_body_sim/core/state_hash.h"
+#include "rigid_body_sim/ros/conversions.h"
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/recorded_input.h"
+#include "rigid_body_sim/ros/recorded_parameters.h"
 #include "rigid_body_sim/ros/scene_bodies.h"
 
 namespace rigid_body_sim {
@@ -20,17 +23,14 @@ constexpr double kMaxCatchUp_s = 0.1;
 // How long a paused loop waits for callbacks before checking again.
 constexpr std::chrono::milliseconds kPausedWait(50);
 
-core::WorldDef MakeWorldDef(const NodeSettings& settings) {
-  core::WorldDef def;
-  def.integrator = settings.integrator;
-  def.dt_s = 1.0 / settings.rate_hz;
-  def.gravity = settings.gravity_mps2;
-  def.wrench_timeout_s = settings.wrench_timeout_s;
-  def.max_substeps = settings.max_substeps;
-  def.threads = settings.threads;
-  def.wind = settings.wind;
-  def.wind.velocity_mps = settings.wind_mps;  // the runtime key's, read from wind.velocity
-  return def;
+// ~record's recorder, if the node records.
+std::unique_ptr<InputRecorder> MakeRecorder(const ros::NodeHandle& private_nh,
+                                            const NodeSettings& settings,
+                                            const StepLattice* lattice) {
+  if (settings.record_path.empty()) return nullptr;
+  return std::make_unique<InputRecorder>(
+      settings.record_path, RecordedParametersOf(private_nh),
+      [lattice](std::uint64_t steps) { return lattice->Stamp(steps); });
 }
 
 }  // namespace
@@ -55,11 +55,14 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
       sensors_(settings_, world_, graph_),
       static_frames_(settings_.tf_prefix, world_, graph_),
       diagnostics_(private_nh, settings_, world_),
-      editor_(&world_, &graph_,
-              [this](const WorldEvent& event) {
-                if (event.kind == WorldEvent::Kind::kReset) sensors_.Restart(world_.step_count());
-                diagnostics_.OnWorldEvent(event, world_);
-              }),
+      recorder_(MakeRecorder(private_nh, settings_, &lattice_)),
+      editor_(
+          &world_, &graph_,
+          [this](const WorldEvent& event) {
+            if (event.kind == WorldEvent::Kind::kReset) sensors_.Restart(world_.step_count());
+            diagnostics_.OnWorldEvent(event, world_);
+          },
+          recorder_.get()),
       paused_(settings_.start_paused),
       front_(private_nh, settings_, this, &editor_, &intake_) {
   // Each follows every spawn and delete.
@@ -80,6 +83,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
 void SimulationNode::Run() {
   if (lockstep_) lockstep_->WaitForControllers(publisher_);
   StartClock();
+  if (recorder_) recorder_->Start(start_stamp_);
   next_report_ = Clock::now() + NodeDiagnostics::kReportPeriod;
   pacer_.Restart(Clock::now());
   diagnostics_.Start(Clock::now(), world_);
@@ -178,6 +182,12 @@ void SimulationNode::PublishCycle() {
     core::StateHashValues(world_, &values);
     state_hashes_.Submit(std::move(values), stamp);
   }
+  if (recorder_) {
+    std::vector<double> values;
+    core::StateHashValues(world_, &values);
+    recorder_->RecordCycle(world_.step_count(), std::move(values),
+                           ToBodyStateArray(world_, stamp, settings_.world_frame));
+  }
   if (lockstep_) lockstep_->OpenCycle(stamp, now);
 }
 
@@ -200,6 +210,7 @@ NodeStatus SimulationNode::Status() const {
     status.lockstep = {gate.late_answers(), gate.future_stamps(), gate.timeouts()};
   }
   status.state_hash = state_hashes_.latest();
+  if (recorder_) status.record_error = recorder_->error();
   return status;
 }
 
@@ -209,6 +220,10 @@ void SimulationNode::SetPaused(bool paused) {
     pacer_.Restart(Clock::now());  // no catch-up for the pause
     if (lockstep_) lockstep_->Resume(Clock::now());
   }
+  if (recorder_ && paused_ != paused) {
+    recorder_->Record(RecordedOfKind(paused ? RecordedInput::PAUSE : RecordedInput::RESUME),
+                      world_.step_count());
+  }
   paused_ = paused;
 }
 
@@ -216,6 +231,11 @@ std::uint64_t SimulationNode::StepWhilePaused(std::uint32_t steps) {
   // The cycle lockstep waits at is left without its answers: they come late.
   if (lockstep_) lockstep_->LeaveCycle();
   held_start_.Release();
+  if (recorder_) {
+    RecordedInput input = RecordedOfKind(RecordedInput::STEP);
+    input.indices.push_back(steps);
+    recorder_->Record(std::move(input), world_.step_count());
+  }
   for (std::uint32_t i = 0; i < steps; ++i) StepOnce(i + 1 == steps);
   PublishCycle();
   const std::uint64_t hash = core::StateHash(world_);

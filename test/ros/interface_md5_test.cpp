@@ -25,6 +25,9 @@
 #include "rigid_body_sim/LockstepAnswer.h"
 #include "rigid_body_sim/ParticleWrench.h"
 #include "rigid_body_sim/ParticleWrenchArray.h"
+#include "rigid_body_sim/RecordedCycle.h"
+#include "rigid_body_sim/RecordedInput.h"
+#include "rigid_body_sim/RecordedParameters.h"
 #include "rigid_body_sim/SetBodyState.h"
 #include "rigid_body_sim/SimulationNodeConfig.h"
 #include "rigid_body_sim/SpawnBody.h"
@@ -57,6 +60,9 @@ Table Messages() {
           {"LockstepAnswer", MessageMd5<LockstepAnswer>()},
           {"ParticleWrench", MessageMd5<ParticleWrench>()},
           {"ParticleWrenchArray", MessageMd5<ParticleWrenchArray>()},
+          {"RecordedCycle", MessageMd5<RecordedCycle>()},
+          {"RecordedInput", MessageMd5<RecordedInput>()},
+          {"RecordedParameters", MessageMd5<RecordedParameters>()},
           {"StampedParticleWrenchArray", MessageMd5<StampedParticleWrenchArray>()}};
 }
 

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <optional>
+#include <string>
 
 #include <ros/time.h>
 
@@ -43,6 +44,9 @@ struct NodeStatus {
 
   // StateHashWorker: the latest cycle hashed, if any.
   std::optional<StateHashWorker::Result> state_hash;
+
+  // InputRecorder: why ~record stopped, once a write failed.
+  std::optional<std::string> record_error;
 };
 
 }  // namespace rigid_body_sim

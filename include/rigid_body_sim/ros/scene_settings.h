@@ -62,7 +62,12 @@ struct NodeSettings : RuntimeKeys {
   // Directories under which ~spawn_body may read urdf.file (absolute paths;
   // none: package:// files only; urdf_file_policy.h).
   std::vector<std::string> spawn_file_roots;
+  // ~record: the bag every accepted input is written to; empty: none.
+  std::string record_path;
 };
+
+// The core's definition of the world `settings` describe (the bodies apart).
+core::WorldDef MakeWorldDef(const NodeSettings& settings);
 
 // Every private parameter of `private_nh` but the bodies and the IMU noise,
 // with their documented defaults; tf_prefix, when the node has none of its

@@ -88,8 +88,9 @@ class ServiceFront {
   // On the request lane: parses and checks the body there, adds it on the
   // stepping thread (AddSpawnedBody).
   bool OnSpawnBody(SpawnBody::Request& request, SpawnBody::Response& response);
-  // On the stepping thread: whether the world took the body, and the answer.
-  bool AddSpawnedBody(SceneBody body, std::string* message);
+  // On the stepping thread: whether the world took the body (read from
+  // `body_yaml`), and the answer.
+  bool AddSpawnedBody(SceneBody body, const std::string& body_yaml, std::string* message);
   bool OnDeleteBody(DeleteBody::Request& request, DeleteBody::Response& response);
 
   LoopControl& loop_;

@@ -20,6 +20,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 
 #include <ros/ros.h>
@@ -29,6 +30,7 @@
 #include "rigid_body_sim/ros/body_graph_table.h"
 #include "rigid_body_sim/ros/clock_publisher.h"
 #include "rigid_body_sim/ros/held_start.h"
+#include "rigid_body_sim/ros/input_recorder.h"
 #include "rigid_body_sim/ros/lockstep_driver.h"
 #include "rigid_body_sim/ros/loop_control.h"
 #include "rigid_body_sim/ros/node_diagnostics.h"
@@ -94,6 +96,7 @@ class SimulationNode : public LoopControl {
   StaticFrames static_frames_;
   StateHashWorker state_hashes_;
   NodeDiagnostics diagnostics_;
+  std::unique_ptr<InputRecorder> recorder_;  // with ~record only
   WorldEditor editor_;  // the front end's changes to the world, told to diagnostics_
   bool paused_ = false;
   ros::Time start_stamp_;  // t_0
