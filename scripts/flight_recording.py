@@ -13,7 +13,8 @@ import signal
 import subprocess
 import sys
 import threading
-import time
+
+from script_support import master_is_up, wait_until
 
 ODOM = '/rigid_body_sim/base_link/odom'
 THRUSTS = '/rigid_body_sim/base_link/actuator_states'
@@ -32,22 +33,6 @@ def roll_pitch_of(q):
     return roll, pitch
 
 
-def wait_until(predicate, timeout_s, what):
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            sys.exit('%s: no %s within %g s' % (os.path.basename(sys.argv[0]), what, timeout_s))
-        time.sleep(0.05)
-
-
-def _is_up(master):
-    try:
-        master.getPid()
-        return True
-    except Exception:  # the master is not up yet
-        return False
-
-
 def record(bag_path, topics, duration_s, launch_args=(), port=11398, real_time_factor=1.0):
     """Runs the example with `launch_args` (a list of 'name:=value') and
     writes the messages of `topics` (name -> message class; ODOM among them)
@@ -63,7 +48,7 @@ def record(bag_path, topics, duration_s, launch_args=(), port=11398, real_time_f
         import rosgraph
         import rospy
         from std_srvs.srv import SetBool
-        wait_until(lambda: _is_up(rosgraph.Master('/flight_recording')), 30.0, 'ROS master')
+        wait_until(lambda: master_is_up(rosgraph.Master('/flight_recording')), 30.0, 'ROS master')
         rospy.init_node('flight_recording', disable_signals=True, anonymous=True)
         rospy.wait_for_service('/rigid_body_sim/set_paused', 30.0)
         controller = rospy.get_param('/quadrotor_controller')

@@ -18,13 +18,13 @@ import argparse
 import os
 import signal
 import subprocess
-import sys
 import tempfile
 import threading
-import time
 
 import numpy
 import yaml
+
+from script_support import master_is_up, wait_until
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 OUTPUT = os.path.join(REPO, 'doc', 'imu_allan_deviation.png')
@@ -43,22 +43,6 @@ def scene():
                         'sensors': [IMU]}]}
 
 
-def wait_until(predicate, timeout_s, what, poll_s=0.05):
-    deadline = time.monotonic() + timeout_s
-    while not predicate():
-        if time.monotonic() > deadline:
-            sys.exit('%s: no %s within %g s' % (os.path.basename(sys.argv[0]), what, timeout_s))
-        time.sleep(poll_s)
-
-
-def _is_up(master):
-    try:
-        master.getPid()
-        return True
-    except Exception:  # the master is not up yet
-        return False
-
-
 def record(duration_s, port):
     """The IMU's samples over `duration_s` of simulated time: an array of rows
     (gyro x, y, z [rad/s], accel x, y, z [m/s^2])."""
@@ -75,7 +59,7 @@ def record(duration_s, port):
         import rospy
         from rigid_body_sim.srv import Step
         from sensor_msgs.msg import Imu
-        wait_until(lambda: _is_up(rosgraph.Master('/plot_allan')), 30.0, 'ROS master')
+        wait_until(lambda: master_is_up(rosgraph.Master('/plot_allan')), 30.0, 'ROS master')
         rospy.init_node('plot_allan', disable_signals=True, anonymous=True)
         rospy.wait_for_service('/rigid_body_sim/step', 30.0)
         samples = []

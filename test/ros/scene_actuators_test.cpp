@@ -6,44 +6,27 @@
 
 #include <gtest/gtest.h>
 
+#include "scene_text.h"
+
 #include "check_message.h"
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/core/world.h"
-#include "rigid_body_sim/ros/scene_bodies.h"
-#include "rigid_body_sim/ros/scene_error.h"
-#include "rigid_body_sim/ros/yaml_value.h"
 
 namespace rigid_body_sim {
 namespace {
 
-std::vector<SceneBody> Parse(const std::string& yaml) {
-  return ParseBodies(XmlRpcFromYaml(yaml),
-                     [](const std::string&, XmlRpc::XmlRpcValue*) { return false; });
-}
-
-// A body with one site and `actuators` (YAML flow text).
 std::string Craft(const std::string& actuators) {
-  return "[{name: craft, inertial: {mass: 2.0, inertia: {ixx: 0.1, ixy: 0, ixz: 0, iyy: 0.1, "
-         "iyz: 0, izz: 0.1}}, sites: [{name: craft_rotor}], actuators: " +
-         actuators + "}]";
-}
-
-std::string ErrorOf(const std::string& yaml) {
-  try {
-    Parse(yaml);
-  } catch (const SceneError& error) {
-    return error.what();
-  }
-  return "";
+  return CraftWith("craft_rotor", "actuators", actuators);
 }
 
 // The core's check of the parsed scene, as the node builds its World.
 std::string WorldErrorOf(const std::string& yaml) {
-  return test::MessageOf([&] { core::CheckBodyDefs(CoreDefs(Parse(yaml)), core::WorldDef{}); });
+  return test::MessageOf(
+      [&] { core::CheckBodyDefs(CoreDefs(ParseSceneText(yaml)), core::WorldDef{}); });
 }
 
 TEST(SceneActuators, ValuesLandWithTheirDefaults) {
-  const std::vector<SceneBody> bodies = Parse(
+  const std::vector<SceneBody> bodies = ParseSceneText(
       Craft("[{name: a, site: craft_rotor, max_thrust: 8.0}, {name: b, site: craft_rotor, "
             "max_thrust: 4, min_thrust: -1.5, time_constant: 0.02, torque_coefficient: -0.016}]"));
   const std::vector<core::ThrusterDef>& thrusters = bodies.at(0).def.actuators;
@@ -65,29 +48,31 @@ TEST(SceneActuators, AUrdfBodysLinksAreSites) {
   const std::string quad = "[{urdf: {file: '" + std::string(RBS_SOURCE_DIR) +
                            "/config/quadrotor.urdf'}, actuators: [{name: r, site: rotor_2, "
                            "max_thrust: 8.0, time_constant: 0.02}]}]";
-  const std::vector<SceneBody> bodies = Parse(quad);
+  const std::vector<SceneBody> bodies = ParseSceneText(quad);
   ASSERT_EQ(bodies.at(0).def.actuators.size(), 1u);
-  core::World world(core::WorldDef{}, CoreDefs(Parse(quad)));
+  core::World world(core::WorldDef{}, CoreDefs(ParseSceneText(quad)));
   ASSERT_NE(world.actuators().thrusters(world.id(0)), nullptr);
   EXPECT_EQ(world.actuators().thrusters(world.id(0))->at(0).site, "rotor_2");
 }
 
 TEST(SceneActuators, ErrorsNameTheBodyTheActuatorAndTheKey) {
   const std::string entry = "bodies[0] (name 'craft'): ";
-  EXPECT_EQ(ErrorOf(Craft("7")), entry +
-                                     "actuators must be a list of {name, site, max_thrust, "
-                                     "...}, got 7");
-  EXPECT_EQ(ErrorOf(Craft("[{name: a, site: craft_rotor}]")),
+  EXPECT_EQ(SceneTextError(Craft("7")), entry +
+                                            "actuators must be a list of {name, site, max_thrust, "
+                                            "...}, got 7");
+  EXPECT_EQ(SceneTextError(Craft("[{name: a, site: craft_rotor}]")),
             entry + "actuators[0].max_thrust is missing");
-  EXPECT_EQ(ErrorOf(Craft("[{name: a, site: craft_rotor, max_thrust: 1}, {site: craft_rotor, "
-                          "max_thrust: 1}]")),
-            entry + "actuators[1].name is missing");
-  EXPECT_EQ(ErrorOf(Craft("[{name: a, max_thrust: 1}]")), entry + "actuators[0].site is missing");
-  EXPECT_EQ(ErrorOf(Craft("[{name: a, site: craft_rotor, max_thrust: 1, gear: 2}]")),
+  EXPECT_EQ(
+      SceneTextError(Craft("[{name: a, site: craft_rotor, max_thrust: 1}, {site: craft_rotor, "
+                           "max_thrust: 1}]")),
+      entry + "actuators[1].name is missing");
+  EXPECT_EQ(SceneTextError(Craft("[{name: a, max_thrust: 1}]")),
+            entry + "actuators[0].site is missing");
+  EXPECT_EQ(SceneTextError(Craft("[{name: a, site: craft_rotor, max_thrust: 1, gear: 2}]")),
             entry +
                 "actuators[0] has unknown key 'gear' (known: name, site, max_thrust, "
                 "min_thrust, time_constant, torque_coefficient)");
-  EXPECT_EQ(ErrorOf(Craft("[{name: a, site: craft_rotor, max_thrust: fast}]")),
+  EXPECT_EQ(SceneTextError(Craft("[{name: a, site: craft_rotor, max_thrust: fast}]")),
             entry + "actuators[0].max_thrust must be a finite number, got 'fast'");
   EXPECT_EQ(WorldErrorOf(Craft("[{name: a, site: rotor, max_thrust: 1}]")),
             entry + "actuators[0] (name 'a'): site 'rotor' is not a site of the body");

@@ -6,36 +6,15 @@
 
 #include <gtest/gtest.h>
 
-#include "rigid_body_sim/ros/scene_bodies.h"
-#include "rigid_body_sim/ros/scene_error.h"
-#include "rigid_body_sim/ros/yaml_value.h"
+#include "scene_text.h"
 
 namespace rigid_body_sim {
 namespace {
 
-std::vector<SceneBody> Parse(const std::string& yaml) {
-  return ParseBodies(XmlRpcFromYaml(yaml),
-                     [](const std::string&, XmlRpc::XmlRpcValue*) { return false; });
-}
-
-// A body with one site and `sensors` (YAML flow text).
-std::string Craft(const std::string& sensors) {
-  return "[{name: craft, inertial: {mass: 2.0, inertia: {ixx: 0.1, ixy: 0, ixz: 0, iyy: 0.1, "
-         "iyz: 0, izz: 0.1}}, sites: [{name: imu_link}], sensors: " +
-         sensors + "}]";
-}
-
-std::string ErrorOf(const std::string& yaml) {
-  try {
-    Parse(yaml);
-  } catch (const SceneError& error) {
-    return error.what();
-  }
-  return "";
-}
+std::string Craft(const std::string& sensors) { return CraftWith("imu_link", "sensors", sensors); }
 
 TEST(SceneSensors, ValuesLandWithTheirDefaults) {
-  const std::vector<SceneBody> bodies = Parse(Craft(
+  const std::vector<SceneBody> bodies = ParseSceneText(Craft(
       "[{type: imu, name: imu0, site: imu_link, rate: 200, seed: 4, gyro_noise_density: 0.001, "
       "gyro_random_walk: 2e-5, accel_noise_density: 0.02, accel_random_walk: 0.003, "
       "gyro_turn_on_bias_stddev: 0.01, accel_turn_on_bias_stddev: 0.1}, "
@@ -61,38 +40,39 @@ TEST(SceneSensors, ValuesLandWithTheirDefaults) {
 }
 
 TEST(SceneSensors, AUrdfBodysLinksAreItsSites) {
-  const std::vector<SceneBody> bodies =
-      Parse("[{urdf: {file: '" RBS_SOURCE_DIR
-            "/config/quadrotor.urdf'}, sensors: [{type: imu, name: imu_raw, rate: 100, site: "
-            "imu_link}]}]");
+  const std::vector<SceneBody> bodies = ParseSceneText(
+      "[{urdf: {file: '" RBS_SOURCE_DIR
+      "/config/quadrotor.urdf'}, sensors: [{type: imu, name: imu_raw, rate: 100, site: "
+      "imu_link}]}]");
   EXPECT_EQ(bodies.at(0).graph.sensors.at(0).site, "imu_link");
 }
 
 TEST(SceneSensors, ErrorsNameTheBodyTheSensorAndTheKey) {
   const std::string body = "bodies[0] (name 'craft'): ";
-  EXPECT_EQ(ErrorOf(Craft("{type: imu}")),
+  EXPECT_EQ(SceneTextError(Craft("{type: imu}")),
             body + "sensors must be a list of {type, name, rate, ...}, got a map");
-  EXPECT_EQ(ErrorOf(Craft("[{name: a, rate: 100}]")), body + "sensors[0].type is missing");
-  EXPECT_EQ(ErrorOf(Craft("[{type: lidar, name: a, rate: 100}]")),
+  EXPECT_EQ(SceneTextError(Craft("[{name: a, rate: 100}]")), body + "sensors[0].type is missing");
+  EXPECT_EQ(SceneTextError(Craft("[{type: lidar, name: a, rate: 100}]")),
             body + "sensors[0].type must be imu or odometry, got 'lidar'");
-  EXPECT_EQ(ErrorOf(Craft("[{type: odometry, name: a, rate: 100, gyro_noise_density: 1}]")),
+  EXPECT_EQ(SceneTextError(Craft("[{type: odometry, name: a, rate: 100, gyro_noise_density: 1}]")),
             body +
                 "sensors[0] has unknown key 'gyro_noise_density' (known for odometry: name, "
                 "rate, seed, site, type, angular_velocity_stddev, linear_velocity_stddev, "
                 "orientation_stddev, position_stddev)");
-  EXPECT_EQ(ErrorOf(Craft("[{type: imu, name: imu, rate: 100}]")),
+  EXPECT_EQ(SceneTextError(Craft("[{type: imu, name: imu, rate: 100}]")),
             body + "sensors[0].name 'imu' is one of the body's own topics");
-  EXPECT_EQ(ErrorOf(Craft("[{type: imu, name: 'a/b', rate: 100}]")),
+  EXPECT_EQ(SceneTextError(Craft("[{type: imu, name: 'a/b', rate: 100}]")),
             body +
                 "sensors[0].name 'a/b' is not a topic name of one segment (a letter, then "
                 "letters, digits and '_')");
-  EXPECT_EQ(ErrorOf(Craft("[{type: imu, name: a, rate: 100}, {type: odometry, name: a, rate: "
-                          "100}]")),
-            body + "sensors[1].name 'a' is used by another sensor");
-  EXPECT_EQ(ErrorOf(Craft("[{type: imu, name: a}]")), body + "sensors[0].rate is missing");
-  EXPECT_EQ(ErrorOf(Craft("[{type: imu, name: a, rate: 100, accel_random_walk: -1}]")),
+  EXPECT_EQ(
+      SceneTextError(Craft("[{type: imu, name: a, rate: 100}, {type: odometry, name: a, rate: "
+                           "100}]")),
+      body + "sensors[1].name 'a' is used by another sensor");
+  EXPECT_EQ(SceneTextError(Craft("[{type: imu, name: a}]")), body + "sensors[0].rate is missing");
+  EXPECT_EQ(SceneTextError(Craft("[{type: imu, name: a, rate: 100, accel_random_walk: -1}]")),
             body + "sensors[0].accel_random_walk must be >= 0, got -1");
-  EXPECT_EQ(ErrorOf(Craft("[{type: imu, name: a, rate: 100, site: nowhere}]")),
+  EXPECT_EQ(SceneTextError(Craft("[{type: imu, name: a, rate: 100, site: nowhere}]")),
             body + "sensors[0] (name 'a').site 'nowhere' is not a site of the body");
 }
 
