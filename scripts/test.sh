@@ -9,7 +9,9 @@
 #
 # clang-tidy runs one source at a time at the lowest priority while the tests
 # run: the rostests mostly wait on the clock, so it takes the idle core
-# instead of minutes of its own. Its report is printed after the tests.
+# instead of minutes of its own. If it is not done when the tests are, a
+# second run takes the sources from the other end (tidy_check.sh,
+# RBS_TIDY_REVERSE). Its report is printed after the tests.
 set -euo pipefail
 # shellcheck source=scripts/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
@@ -38,6 +40,11 @@ catkin_make run_tests -j1 || status=1
 catkin_test_results build/test_results || status=1
 bash "$repo/test/install/install_space_test.sh" "$ws" || status=1
 tests_done=$(date +%s)
+if kill -0 "$tidy_pid" 2>/dev/null; then
+  RBS_TIDY_JOBS=1 RBS_TIDY_REVERSE=1 bash "$repo/scripts/tidy_check.sh" >"$tidy_log.reverse" 2>&1 ||
+    status=1
+  cat "$tidy_log.reverse"
+fi
 wait "$tidy_pid" || status=1
 cat "$tidy_log"
 echo "test: build $((build_done - start)) s, tests $((tests_done - build_done)) s," \

@@ -88,8 +88,14 @@ echo "tidy_check: ${#targets[@]} file(s): ${#to_check[@]} to check, $tidy_jobs a
 build_dir="$ws/build"
 export link logs cache tidy_args build_dir
 # Each line "<source> <key>" becomes the inner script's $1 and $2.
+# RBS_TIDY_REVERSE=1 takes them last first, so that a second run started
+# beside a first one meets it in the middle: each skips what the other has
+# found clean by then.
+order=(cat)
+[ "${RBS_TIDY_REVERSE:-0}" = 1 ] && order=(tac)
 # shellcheck disable=SC2016  # expanded by the inner bash
-printf '%s\n' "${to_check[@]}" | xargs -r -P "$tidy_jobs" -L 1 bash -c '
+printf '%s\n' "${to_check[@]}" | "${order[@]}" | xargs -r -P "$tidy_jobs" -L 1 bash -c '
+  [ "$2" != "-" ] && [ -f "$cache/$2" ] && exit 0
   out="$logs/$(echo "$1" | tr / _).log"
   # shellcheck disable=SC2086  # tidy_args: words
   if clang-tidy -p "$build_dir" $tidy_args "$link/$1" >"$out" 2>&1; then

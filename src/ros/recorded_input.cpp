@@ -30,7 +30,7 @@ class Values {
   }
   double Next() { return values_[next_++]; }
   Eigen::Vector3d NextVector() {
-    const Eigen::Vector3d vector(values_[next_], values_[next_ + 1], values_[next_ + 2]);
+    Eigen::Vector3d vector(values_[next_], values_[next_ + 1], values_[next_ + 2]);
     next_ += 3;
     return vector;
   }

@@ -23,6 +23,10 @@ order (doc/ sorted by name). Every ```bash fenced block is split into commands
   integrator table in doc/physics.md;
 - `rostest [options] <package> <file>`: the file must exist in the package,
   exactly once, and `roslaunch --nodes` must load it;
+- a command that reads a recorded bag (`rosbag info BAG`, `rostopic echo -b
+  BAG ...`, `rosrun rigid_body_sim replay BAG`): not run (record_replay.test
+  runs recording and replay) but checked: an earlier command of the same
+  document records BAG (`record:=BAG`), and the tool exists;
 - anything else that names a ROS command-line tool (`rosrun`, `rosparam`, a
   `roslaunch` after `&&`, ...): a failure, so that no such command goes
   unchecked; a ROS command in a fenced block that is not ```bash fails too;
@@ -77,6 +81,7 @@ import os
 import re
 import shlex
 import signal
+import shutil
 import subprocess
 import threading
 import time
@@ -201,11 +206,27 @@ def words(command):
     return w
 
 
+def bag_read(w):
+    """The bag that the command of words `w` reads, for the commands that read
+    a recorded bag (`rosbag info BAG`, `rostopic echo -b BAG ...`, `rosrun
+    rigid_body_sim replay BAG`); None for any other command."""
+    if w[:2] == ['rosbag', 'info'] and len(w) == 3:
+        return w[2]
+    if w[:2] == ['rostopic', 'echo'] and '-b' in w[:-1]:
+        return w[w.index('-b') + 1]
+    if w[:3] == ['rosrun', 'rigid_body_sim', 'replay'] and len(w) == 4:
+        return w[3]
+    return None
+
+
 def classify(command):
-    """'run', 'stream' (runs until interrupted), 'launch', 'rostest' or 'skip' (no
-    ROS tool in it); None: a ROS tool used in a way this test does not check."""
+    """'run', 'stream' (runs until interrupted), 'launch', 'rostest', 'bag' (reads
+    a recorded bag) or 'skip' (no ROS tool in it); None: a ROS tool used in a
+    way this test does not check."""
     w = words(command)
-    if w and w[0] == 'bash' and len(w) > 1 and w[1] == RUN_SCRIPT:
+    if w and bag_read(w):
+        kind, rest = 'bag', w[1:]
+    elif w and w[0] == 'bash' and len(w) > 1 and w[1] == RUN_SCRIPT:
         kind = 'launch'
         rest = w[2:]
     elif w and w[0] in RUN_COMMANDS:
@@ -614,6 +635,31 @@ class ReadmeExamples(unittest.TestCase):
                          'rostest command per line, or extend readme_examples_test.py):\n'
                          + '\n'.join(unknown))
         return kinds
+
+    def test_bag_commands(self):
+        """Every command that reads a recorded bag reads one that an earlier
+        command of its document records (`record:=BAG`), with a tool that
+        exists: the bag is the reader's, so these are checked, not run
+        (record_replay.test runs the recording and the replay)."""
+        import roslib.packages
+        recorded = {}
+        checked = 0
+        for doc, lineno, command, kind in self.classified():
+            w = words(command)
+            recorded.setdefault(doc, set()).update(
+                a.split(':=', 1)[1] for a in w if a.startswith('record:='))
+            if kind != 'bag':
+                continue
+            where = '%s line %d: `%s`' % (doc, lineno, ' '.join(w))
+            self.assertIn(bag_read(w), recorded[doc], '%s: no earlier command of %s records '
+                          'that bag (record:=)' % (where, doc))
+            if w[0] == 'rosrun':
+                self.assertTrue(roslib.packages.find_node(w[1], w[2]),
+                                '%s: package %s has no executable %s' % (where, w[1], w[2]))
+            else:
+                self.assertIsNotNone(shutil.which(w[0]), '%s: no %s on PATH' % (where, w[0]))
+            checked += 1
+        self.assertGreater(checked, 0, 'no documented command reads a recorded bag')
 
     def test_launch_and_rostest_lines(self):
         """Every roslaunch (and `bash scripts/run.sh`) line resolves its launch file
