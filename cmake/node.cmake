@@ -63,7 +63,9 @@ add_library(rigid_body_sim_ros
   src/ros/world_editor.cpp
   src/ros/service_front.cpp
   src/ros/runtime_settings.cpp
-  src/ros/simulation_node.cpp)
+  src/ros/simulation_node.cpp
+  src/ros/node_handles.cpp
+  src/ros/simulation_runner.cpp)
 # The ROS headers come from include_directories() above here and from
 # catkin_package() for dependent packages: no absolute path in the interface.
 target_include_directories(rigid_body_sim_ros PUBLIC include PRIVATE ${catkin_INCLUDE_DIRS}
@@ -78,12 +80,20 @@ target_link_libraries(rigid_body_sim_node rigid_body_sim_ros rigid_body_sim_core
 add_dependencies(rigid_body_sim_node
   ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 
+# The node as a nodelet (nodelet_plugins.xml): rigid_body_sim/SimulationNodelet.
+add_library(rigid_body_sim_nodelets src/ros/simulation_nodelet.cpp)
+target_link_libraries(rigid_body_sim_nodelets rigid_body_sim_ros rigid_body_sim_core
+  ${catkin_LIBRARIES})
+add_dependencies(rigid_body_sim_nodelets
+  ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
+
 # replay: a ~record bag done again without the node (src/replay_main.cpp).
 add_executable(replay src/replay_main.cpp)
 target_link_libraries(replay rigid_body_sim_ros rigid_body_sim_core ${catkin_LIBRARIES})
 add_dependencies(replay ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 
-install(TARGETS rigid_body_sim_core rigid_body_sim_ros rigid_body_sim_node replay
+install(TARGETS rigid_body_sim_core rigid_body_sim_ros rigid_body_sim_nodelets rigid_body_sim_node
+  replay
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
@@ -91,6 +101,7 @@ install(DIRECTORY include/${PROJECT_NAME}/
   DESTINATION ${CATKIN_PACKAGE_INCLUDE_DESTINATION})
 install(DIRECTORY launch config
   DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(FILES nodelet_plugins.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 # launch/sharded.launch's launch-prefix: $(find rigid_body_sim)/scripts/on_core.sh
 # resolves to this copy in an install space.
 install(PROGRAMS scripts/on_core.sh

@@ -11,6 +11,7 @@ packages=(
   libstd-srvs-dev libvisualization-msgs-dev libdiagnostic-updater-dev
   libdiagnostic-msgs-dev libros-rosgraph-msgs-dev libnav-msgs-dev libsensor-msgs-dev
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  libnodeletlib-dev libnodeletlib-tools pluginlib-dev
   rosbash python3-roslib libroslib-dev liburdf-dev liburdfdom-dev liburdfdom-headers-dev
   ros-robot-state-publisher librosbag-dev librosbag-storage-dev python3-rosbag
   python3-geometry-msgs python3-std-srvs python3-diagnostic-msgs

@@ -2,6 +2,10 @@
 
 #include <cstdint>
 
+#include <boost/make_shared.hpp>
+
+#include "delivering_queue.h"
+
 namespace rigid_body_sim::client {
 namespace {
 
@@ -10,13 +14,23 @@ constexpr std::uint32_t kQueueSize = 10;
 
 }  // namespace
 
-LockstepController::LockstepController(const ros::NodeHandle& nh, const std::string& node)
-    : nh_(nh), node_(ros::names::resolve(node)) {}
+LockstepController::LockstepController(const ros::NodeHandle& nh, const std::string& node,
+                                       AnswerThread answer_thread)
+    : nh_(nh), node_(ros::names::resolve(node)) {
+  if (answer_thread == AnswerThread::kDelivering) {
+    delivering_queue_ = std::make_unique<DeliveringQueue>();
+  }
+}
 
 void LockstepController::Start() {
   answers_ = nh_.advertise<LockstepAnswer>(node_ + "/lockstep_answers", kQueueSize);
-  bodies_ = nh_.subscribe(node_ + "/bodies", kQueueSize, &LockstepController::OnBodies, this,
-                          ros::TransportHints().tcpNoDelay());
+  ros::SubscribeOptions options;
+  options.init<BodyStateArray>(
+      node_ + "/bodies", kQueueSize,
+      [this](const BodyStateArray::ConstPtr& bodies) { OnBodies(bodies); });
+  options.transport_hints = ros::TransportHints().tcpNoDelay();
+  options.callback_queue = delivering_queue_.get();  // null: nh_'s
+  bodies_ = nh_.subscribe(options);
 }
 
 void LockstepController::Stop() {
@@ -25,8 +39,8 @@ void LockstepController::Stop() {
 }
 
 void LockstepController::OnBodies(const BodyStateArray::ConstPtr& bodies) {
-  LockstepAnswer answer = Answer(*bodies);
-  answer.header.stamp = bodies->header.stamp;
+  const auto answer = boost::make_shared<LockstepAnswer>(Answer(*bodies));
+  answer->header.stamp = bodies->header.stamp;
   answers_.publish(answer);
 }
 

@@ -1,51 +1,34 @@
-// A lockstep controller on the C++ client (doc/testing.md, "The C++ client"):
-// a PD law that holds the centre of mass of the body ~body at height
-// ~target_z [m], answering each cycle with one body wrench at its centre of
-// mass, in world axes.
-#include <string>
+#include "hold_controller.h"
+
+#include <stdexcept>
 #include <utility>
 
-#include <ros/ros.h>
+namespace rigid_body_sim::examples {
 
-#include "rigid_body_sim/client/lockstep_controller.h"
+HoldController::HoldController(const ros::NodeHandle& nh, std::string body, double target_z_m,
+                               AnswerThread answer_thread)
+    : LockstepController(nh, "/rigid_body_sim", answer_thread),
+      body_(std::move(body)),
+      target_z_m_(target_z_m) {}
 
-namespace {
-
-class HoldController : public rigid_body_sim::client::LockstepController {
- public:
-  HoldController(const ros::NodeHandle& nh, std::string body, double target_z_m)
-      : LockstepController(nh, "/rigid_body_sim"),
-        body_(std::move(body)),
-        target_z_m_(target_z_m) {}
-
- protected:
-  rigid_body_sim::LockstepAnswer Answer(const rigid_body_sim::BodyStateArray& bodies) override {
-    rigid_body_sim::LockstepAnswer answer;  // stamped with the cycle by the caller
-    for (const rigid_body_sim::BodyState& state : bodies.bodies) {
-      if (state.name != body_) continue;
-      geometry_msgs::Vector3 force;  // [N], world axes
-      force.z =
-          kStiffness * (target_z_m_ - state.pose.position.z) - kDamping * state.twist.linear.z;
-      answer.body_wrenches.push_back(
-          rigid_body_sim::client::MakeBodyWrench(body_, force, geometry_msgs::Vector3()));
-    }
-    return answer;
-  }
-
- private:
-  static constexpr double kStiffness = 40.0;  // N/m
-  static constexpr double kDamping = 12.0;    // N s/m
-  const std::string body_;
-  const double target_z_m_;
-};
-
-}  // namespace
-
-int main(int argc, char** argv) {
-  ros::init(argc, argv, "hold_controller");
-  ros::NodeHandle params("~");
-  HoldController controller(ros::NodeHandle(), params.param<std::string>("body", "box"),
-                            params.param("target_z", 1.0));
-  controller.Start();  // list this node in the simulator's ~lockstep_publishers
-  ros::spin();
+client::LockstepController::AnswerThread HoldController::ReadAnswerThread(
+    const ros::NodeHandle& params) {
+  const std::string thread = params.param<std::string>("answer_thread", "delivering");
+  if (thread == "delivering") return AnswerThread::kDelivering;
+  if (thread == "queue") return AnswerThread::kQueue;
+  throw std::invalid_argument(params.resolveName("answer_thread") + ": '" + thread +
+                              "' is neither 'delivering' nor 'queue'");
 }
+
+LockstepAnswer HoldController::Answer(const BodyStateArray& bodies) {
+  LockstepAnswer answer;  // stamped with the cycle by the caller
+  for (const BodyState& state : bodies.bodies) {
+    if (state.name != body_) continue;
+    geometry_msgs::Vector3 force;  // [N], world axes
+    force.z = kStiffness * (target_z_m_ - state.pose.position.z) - kDamping * state.twist.linear.z;
+    answer.body_wrenches.push_back(client::MakeBodyWrench(body_, force, geometry_msgs::Vector3()));
+  }
+  return answer;
+}
+
+}  // namespace rigid_body_sim::examples

@@ -3,8 +3,6 @@
 #include <stdexcept>
 #include <utility>
 
-#include <ros/names.h>
-
 namespace rigid_body_sim {
 
 BodyGraphTable::BodyGraphTable(NameResolver resolve) : resolve_(std::move(resolve)) {}
@@ -37,7 +35,5 @@ void BodyGraphTable::Remove(const std::string& body) {
   namespaces_.erase(entry->second.topic_namespace);
   entries_.erase(entry);
 }
-
-std::string ResolveGraphName(const std::string& name) { return ros::names::resolve(name); }
 
 }  // namespace rigid_body_sim

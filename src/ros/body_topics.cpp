@@ -6,6 +6,8 @@
 #include <sensor_msgs/Imu.h>
 #include <sensor_msgs/JointState.h>
 
+#include "rigid_body_sim/ros/node_handles.h"
+
 namespace rigid_body_sim {
 namespace {
 
@@ -41,9 +43,10 @@ void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic,
 
 }  // namespace
 
-BodyTopics::BodyTopics(bool enabled, WrenchCallback on_wrench, ActuatorCallback on_actuators,
-                       ConnectCallback on_connect)
-    : enabled_(enabled),
+BodyTopics::BodyTopics(const ros::NodeHandle& private_nh, bool enabled, WrenchCallback on_wrench,
+                       ActuatorCallback on_actuators, ConnectCallback on_connect)
+    : private_nh_(private_nh),
+      enabled_(enabled),
       on_wrench_(std::move(on_wrench)),
       on_actuators_(std::move(on_actuators)),
       on_connect_(std::move(on_connect)) {
@@ -127,7 +130,7 @@ void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
   // topics of every body ever advertised would stay in memory. This one lets
   // them go on return; the publishers and the subscriber hold node handles of
   // their own.
-  ros::NodeHandle nh(topics->topic_namespace);
+  ros::NodeHandle nh = HandleIn(private_nh_, topics->topic_namespace);
   const std::string& body = topics->body;
   AdvertiseCounted<geometry_msgs::PoseStamped>(nh, "pose", topics, Output::kPose, &topics->pose,
                                                on_connect_);

@@ -2,6 +2,8 @@
 
 #include <rosgraph_msgs/Clock.h>
 
+#include "rigid_body_sim/ros/node_handles.h"
+
 namespace rigid_body_sim {
 namespace {
 
@@ -18,14 +20,16 @@ rosgraph_msgs::Clock ClockMsg(const ros::Time& stamp) {
 
 }  // namespace
 
-ClockPublisher::ClockPublisher(const NodeSettings& settings, const HeldStart& held_start)
+ClockPublisher::ClockPublisher(const ros::NodeHandle& private_nh, const NodeSettings& settings,
+                               const HeldStart& held_start)
     : enabled_(settings.publish_clock && settings.shard.index == 0) {  // one /clock
   if (!enabled_) return;
-  ros::NodeHandle root;
-  clock_ = root.advertise<rosgraph_msgs::Clock>(
-      "/clock", kClockQueueSize, [&held_start](const ros::SingleSubscriberPublisher& subscriber) {
-        if (held_start.held()) subscriber.publish(ClockMsg(held_start.stamp()));
-      });
+  clock_ = HandleIn(private_nh, "/")
+               .advertise<rosgraph_msgs::Clock>(
+                   "/clock", kClockQueueSize,
+                   [&held_start](const ros::SingleSubscriberPublisher& subscriber) {
+                     if (held_start.held()) subscriber.publish(ClockMsg(held_start.stamp()));
+                   });
 }
 
 void ClockPublisher::Publish(const ros::Time& stamp) {

@@ -7,6 +7,7 @@
 
 #include "rigid_body_sim/ros/join.h"
 #include "rigid_body_sim/ros/lockstep_publishers.h"
+#include "rigid_body_sim/ros/node_handles.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -24,9 +25,10 @@ LockstepGate::Clock::duration Seconds(double seconds) {
 }  // namespace
 
 LockstepDriver::LockstepDriver(const ros::NodeHandle& private_nh, const NodeSettings& settings,
-                               WrenchIntake* intake, TakeEntries take_entries,
-                               TakeAnswer take_answer)
+                               const RunFlag* run_flag, WrenchIntake* intake,
+                               TakeEntries take_entries, TakeAnswer take_answer)
     : private_nh_(private_nh),
+      run_flag_(*run_flag),
       settings_(settings.lockstep),
       rate_hz_(settings.rate_hz),
       gate_(settings.lockstep.publishers, settings.lockstep.timeout_s),
@@ -46,9 +48,9 @@ void LockstepDriver::WaitForControllers(const StatePublisher& publisher) {
   const std::string state_topic = private_nh_.resolveName("bodies");
   const std::size_t listed = gate_.publishers().size();
   const Clock::time_point give_up = Clock::now() + Seconds(settings_.startup_timeout_s);
-  ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
+  ros::CallbackQueue& callbacks = SteppingQueue(private_nh_);
   std::vector<std::string> missing = gate_.publishers();
-  while (ros::ok()) {
+  while (run_flag_.running()) {
     // The master's account, and this node's own connections, which the first
     // published state needs.
     missing = PublishersNotConnected(gate_.publishers(), answer_topics, state_topic);
@@ -59,7 +61,7 @@ void LockstepDriver::WaitForControllers(const StatePublisher& publisher) {
     if (Clock::now() >= give_up) break;
     callbacks.callAvailable(ros::WallDuration(kPollPeriod_s));
   }
-  if (!ros::ok()) return;
+  if (!run_flag_.running()) return;
   gate_.CountStartupTimeout();
   ROS_WARN(
       "lockstep: after %g s (~lockstep_startup_timeout) %s not both publishing on %s or %s and "
@@ -77,7 +79,7 @@ std::int64_t LockstepDriver::WaitForFirstCycle(const StepLattice& lattice,
   // that stands still.
   const Clock::time_point give_up =
       Clock::now() + Seconds(2.0 * static_cast<double>(lattice.publish_every_steps()) / rate_hz_);
-  while (ros::ok() && now_ns() < lattice.StampNs(first_cycle) && Clock::now() < give_up) {
+  while (run_flag_.running() && now_ns() < lattice.StampNs(first_cycle) && Clock::now() < give_up) {
     ros::WallDuration(std::min(1e-3, 1.0 / rate_hz_)).sleep();
   }
   return first_cycle;

@@ -2,6 +2,7 @@
 
 #include "rigid_body_sim/core/state_hash.h"
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/node_handles.h"
 
 #include <optional>
 #include <string>
@@ -28,7 +29,7 @@ NodeDiagnostics::NodeDiagnostics(const ros::NodeHandle& private_nh, const NodeSe
       shard_(settings.shard),
       conservation_(world),
       sweep_per_step_(world.size() / kStepsPerConservationSweep + 1),
-      updater_(ros::NodeHandle(), private_nh),
+      updater_(HandleIn(private_nh, "/"), private_nh, NodeName(private_nh)),
       reported_faults_() {
   for (std::size_t body = 0; body < world.size(); ++body) {
     reported_faults_.Insert(world.id(body), core::BodyFault::kNone);

@@ -4,12 +4,12 @@
 #include <stdexcept>
 
 #include <ros/param.h>
-#include <ros/this_node.h>
 #include <xmlrpcpp/XmlRpcUtil.h>
 
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/body_graph_table.h"
 #include "rigid_body_sim/ros/imu_noise_params.h"
+#include "rigid_body_sim/ros/node_handles.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -78,7 +78,7 @@ RecordedParameters RecordedParametersOf(const ros::NodeHandle& private_nh) {
   parameters[kPrivateKey] = private_tree;
   parameters[kUrdfParamsKey] = urdf_params;
   RecordedParameters message;
-  message.node = ros::this_node::getName();
+  message.node = NodeName(private_nh);
   AppendXml(parameters, &message.parameters);
   return message;
 }

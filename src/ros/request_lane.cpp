@@ -25,7 +25,10 @@ class FunctionCallback : public ros::CallbackInterface {
 }  // namespace
 
 RequestLane::RequestLane(const ros::NodeHandle& private_nh)
-    : stepping_thread_(std::this_thread::get_id()), lane_nh_(private_nh), spinner_(1, &queue_) {
+    : stepping_thread_(std::this_thread::get_id()),
+      stepping_queue_(*private_nh.getCallbackQueue()),
+      lane_nh_(private_nh),
+      spinner_(1, &queue_) {
   lane_nh_.setCallbackQueue(&queue_);
   trim_timer_ = lane_nh_.createWallTimer(ros::WallDuration(kTrimPeriod_s),
                                          [this](const ros::WallTimerEvent&) {
@@ -40,7 +43,7 @@ RequestLane::~RequestLane() {
 }
 
 void RequestLane::Post(std::function<void()> run) {
-  ros::getGlobalCallbackQueue()->addCallback(boost::make_shared<FunctionCallback>(std::move(run)));
+  stepping_queue_.addCallback(boost::make_shared<FunctionCallback>(std::move(run)));
 }
 
 }  // namespace rigid_body_sim

@@ -3,6 +3,7 @@
 #include "rigid_body_sim/core/validate.h"
 #include "rigid_body_sim/ros/body_graph_table.h"
 #include "rigid_body_sim/ros/imu_noise_params.h"
+#include "rigid_body_sim/ros/node_handles.h"
 #include "rigid_body_sim/ros/scene_error.h"
 #include "rigid_body_sim/ros/scene_sensors.h"
 
@@ -27,7 +28,8 @@ Scene LoadScene(const ros::NodeHandle& private_nh) {
     // Every shard checks the whole scene (names, states), with its indices,
     // as a World of the default WorldDef would.
     core::CheckBodyDefs(CoreDefs(scene.bodies), core::WorldDef());
-    const BodyGraphTable whole_scene(scene.bodies, ResolveGraphName);  // topic namespaces
+    const BodyGraphTable whole_scene(scene.bodies,
+                                     GraphNameResolver(private_nh));  // topic namespaces
     KeepShard(scene.settings.shard, &scene);
   }
   return scene;

@@ -11,6 +11,7 @@
 #include "rigid_body_sim/core/state_hash.h"
 #include "rigid_body_sim/ros/conversions.h"
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/node_handles.h"
 #include "rigid_body_sim/ros/recorded_input.h"
 #include "rigid_body_sim/ros/recorded_parameters.h"
 #include "rigid_body_sim/ros/scene_bodies.h"
@@ -35,15 +36,19 @@ std::unique_ptr<InputRecorder> MakeRecorder(const ros::NodeHandle& private_nh,
 
 }  // namespace
 
-SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
-    : settings_(scene.settings),
-      graph_(scene.bodies, ResolveGraphName),
+SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene,
+                               const RunFlag* run_flag)
+    : name_(NodeName(private_nh)),
+      run_flag_(*run_flag),
+      callbacks_(SteppingQueue(private_nh)),
+      settings_(scene.settings),
+      graph_(scene.bodies, GraphNameResolver(private_nh)),
       world_(MakeWorldDef(settings_), CoreDefs(std::move(scene.bodies))),  // graph_ has read them
       lattice_(settings_),
       pacer_(1.0 / settings_.rate_hz, settings_.real_time_factor, kMaxCatchUp_s),
       intake_(MakeWrenchFrames(world_, settings_.world_frame, settings_.tf_prefix,
                                std::move(scene.other_shard_bodies), settings_.shard.count)),
-      clock_(settings_, held_start_),
+      clock_(private_nh, settings_, held_start_),
       publisher_(
           private_nh, settings_, world_, graph_, held_start_,
           [this](const std::string& body, const geometry_msgs::WrenchStamped& msg) {
@@ -52,8 +57,8 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
           [this](const std::string& body, const ActuatorCommand& msg) {
             front_.OnActuatorCommand(body, msg);
           }),
-      sensors_(settings_, world_, graph_),
-      static_frames_(settings_.tf_prefix, world_, graph_),
+      sensors_(private_nh, settings_, world_, graph_),
+      static_frames_(private_nh, settings_.tf_prefix, world_, graph_),
       diagnostics_(private_nh, settings_, world_),
       recorder_(MakeRecorder(private_nh, settings_, &lattice_)),
       editor_(
@@ -72,7 +77,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
   world_.AddListener(&diagnostics_);
   if (settings_.lockstep.enabled) {
     lockstep_.emplace(
-        private_nh, settings_, &intake_,
+        private_nh, settings_, &run_flag_, &intake_,
         [this](const std::vector<ParticleWrench>& entries) {
           front_.TakeWrenches(entries);  // as on ~particle_wrenches
         },
@@ -90,9 +95,9 @@ void SimulationNode::Run() {
   ROS_INFO(
       "%s: %zu bodies, integrator %s, dt %g s, publishing every %llu steps, "
       "real-time factor %g, start time %.9f s%s%s",
-      ros::this_node::getName().c_str(), world_.size(), world_.integrator().name(),
-      world_.options().dt_s, static_cast<unsigned long long>(lattice_.publish_every_steps()),
-      settings_.real_time_factor, start_stamp_.toSec(),
+      name_.c_str(), world_.size(), world_.integrator().name(), world_.options().dt_s,
+      static_cast<unsigned long long>(lattice_.publish_every_steps()), settings_.real_time_factor,
+      start_stamp_.toSec(),
       lockstep_ ? (", lockstep with " + lockstep_->publisher_list()).c_str() : "",
       settings_.start_paused ? ", paused at the start time" : "");
   // Under lockstep t_0 is published, for the controllers' first answer, once
@@ -102,8 +107,7 @@ void SimulationNode::Run() {
   if (lockstep_) PublishCycle();
   if (settings_.start_paused) HoldStartState();
 
-  ros::CallbackQueue& callbacks = *ros::getGlobalCallbackQueue();
-  while (ros::ok()) {
+  while (run_flag_.running()) {
     Clock::time_point now = Clock::now();
     // Time spent waiting for answers is not a debt to catch up.
     if (!paused_ && lockstep_ && lockstep_->PassGate(now) && pacer_.paced() &&
@@ -133,7 +137,7 @@ void SimulationNode::Run() {
                                    : pacer_.paced() ? std::min(pacer_.next_due(), next_report_)
                                                     : now;
     const double wait_s = std::max(0.0, std::chrono::duration<double>(wake - now).count());
-    callbacks.callAvailable(ros::WallDuration(wait_s));
+    callbacks_.callAvailable(ros::WallDuration(wait_s));
   }
 }
 

@@ -10,6 +10,7 @@
 #include "rigid_body_sim/core/motion_capture_noise.h"
 #include "rigid_body_sim/core/site_imu.h"
 #include "rigid_body_sim/ros/conversions.h"
+#include "rigid_body_sim/ros/node_handles.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -91,9 +92,12 @@ nav_msgs::Odometry ToSiteOdometryMsg(const SensorSample& sample, const core::Sit
   return msg;
 }
 
-SiteSensors::SiteSensors(const NodeSettings& settings, const core::World& world,
-                         const BodyGraphTable& graph)
-    : world_frame_(settings.world_frame), tf_prefix_(settings.tf_prefix), graph_(graph) {
+SiteSensors::SiteSensors(const ros::NodeHandle& private_nh, const NodeSettings& settings,
+                         const core::World& world, const BodyGraphTable& graph)
+    : private_nh_(private_nh),
+      world_frame_(settings.world_frame),
+      tf_prefix_(settings.tf_prefix),
+      graph_(graph) {
   for (std::size_t index = 0; index < world.size(); ++index) OnBodyAdded(world, world.id(index));
 }
 
@@ -103,7 +107,7 @@ void SiteSensors::OnBodyAdded(const core::World& world, core::BodyId id) {
   if (defs.empty()) return;
   const std::size_t index = *world.IndexOf(id);
   const core::BodyFrames& frames = world.frames(id);
-  ros::NodeHandle nh(graph_.TopicNamespace(name));
+  ros::NodeHandle nh = HandleIn(private_nh_, graph_.TopicNamespace(name));
   BodySensors body{id, {}};
   body.sensors.reserve(defs.size());
   for (std::uint32_t k = 0; k < defs.size(); ++k) {

@@ -6,10 +6,12 @@
 #include <geometry_msgs/TwistStamped.h>
 #include <geometry_msgs/Vector3Stamped.h>
 #include <rigid_body_sim/BodyStateArray.h>
+#include <boost/make_shared.hpp>
 
 #include "rigid_body_sim/core/kinematics.h"
 #include "rigid_body_sim/ros/body_outputs.h"
 #include "rigid_body_sim/ros/conversions.h"
+#include "rigid_body_sim/ros/node_handles.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -93,14 +95,14 @@ StatePublisher::StatePublisher(ros::NodeHandle private_nh, const NodeSettings& s
       imu_noise_(settings.imu_noise),
       graph_(graph),
       held_start_(held_start),
-      body_topics_(settings.per_body_topics, std::move(on_body_wrench),
+      body_topics_(private_nh, settings.per_body_topics, std::move(on_body_wrench),
                    std::move(on_actuator_command),
                    [this](core::BodyId id, BodyTopics::Output output,
                           const ros::SingleSubscriberPublisher& subscriber) {
                      SendHeldBodyOutput(id, output, subscriber);
                    }),
       joint_states_(private_nh, held_start) {
-  ros::NodeHandle root;
+  ros::NodeHandle root = HandleIn(private_nh, "/");
   Advertise<tf2_msgs::TFMessage>(
       root, "/tf", kTfQueueSize, &tf_, [this](const ros::SingleSubscriberPublisher& subscriber) {
         if (publish_tf_) subscriber.publish(TfMessage(held_start_.world(), held_start_.stamp()));
@@ -149,7 +151,10 @@ void StatePublisher::Publish(const core::World& world, const ros::Time& stamp) {
   if (publish_tf_ && tf_.subscribers > 0) tf_.publisher.publish(TfMessage(world, stamp));
   PublishBodyTopics(world, stamp);
   if (bodies_.subscribers > 0) {
-    bodies_.publisher.publish(ToBodyStateArray(world, stamp, world_frame_));
+    // As a shared pointer, a subscriber in the same process (a controller
+    // nodelet) takes it at once, on this thread, neither serialised nor copied.
+    bodies_.publisher.publish(
+        boost::make_shared<BodyStateArray>(ToBodyStateArray(world, stamp, world_frame_)));
   }
   if (particles_.subscribers > 0) particles_.publisher.publish(ParticlesMessage(world, stamp));
   if (wind_.subscribers > 0) wind_.publisher.publish(WindMessage(world, world_frame_, stamp));

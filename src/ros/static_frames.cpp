@@ -6,6 +6,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include "rigid_body_sim/ros/conversions.h"
+#include "rigid_body_sim/ros/node_handles.h"
 
 namespace rigid_body_sim {
 namespace {
@@ -35,11 +36,12 @@ std::vector<geometry_msgs::TransformStamped> SiteTransforms(const core::World& w
   return transforms;
 }
 
-StaticFrames::StaticFrames(const std::string& tf_prefix, const core::World& world,
-                           const BodyGraphTable& graph)
+StaticFrames::StaticFrames(const ros::NodeHandle& private_nh, const std::string& tf_prefix,
+                           const core::World& world, const BodyGraphTable& graph)
     : tf_prefix_(tf_prefix), graph_(graph) {
-  tf_static_ = ros::NodeHandle().advertise<tf2_msgs::TFMessage>("/tf_static", kQueueSize,
-                                                                /*latch=*/true);
+  tf_static_ = HandleIn(private_nh, "/")
+                   .advertise<tf2_msgs::TFMessage>("/tf_static", kQueueSize,
+                                                   /*latch=*/true);
   for (std::size_t index = 0; index < world.size(); ++index) Add(world, world.id(index));
   if (!bodies_.empty()) Send();
 }

@@ -2,25 +2,42 @@
 // (doc/testing.md, "The C++ client"): each publish cycle's ~bodies goes to
 // Answer(), and what it returns goes back on ~lockstep_answers stamped with
 // the cycle, to be held before the node's next step. List the controller's
-// node name in the node's ~lockstep_publishers.
+// node name in the node's ~lockstep_publishers (in a nodelet manager, the
+// manager's name: every nodelet's messages carry it). Both messages go as
+// shared pointers, so that a controller in the simulator's nodelet manager
+// neither serialises nor copies them.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include <geometry_msgs/Vector3.h>
 #include <rigid_body_sim/BodyStateArray.h>
 #include <rigid_body_sim/BodyWrench.h>
 #include <rigid_body_sim/LockstepAnswer.h>
+#include <ros/callback_queue_interface.h>
 #include <ros/ros.h>
 
 namespace rigid_body_sim::client {
 
 class LockstepController {
  public:
-  // Answers the node `node` (default /rigid_body_sim) through `nh`'s callback
-  // queue, once Start() has connected it.
+  // Where Answer() runs.
+  enum class AnswerThread {
+    // From `nh`'s callback queue, on whichever thread serves it.
+    kQueue,
+    // At once, on the thread that delivers ~bodies: the simulator's stepping
+    // thread when both are nodelets of one manager, roscpp's network thread
+    // over TCP. A thread wake-up fewer per cycle; Answer() must then return
+    // without waiting for the simulator or for a callback queue.
+    kDelivering,
+  };
+
+  // Answers the node `node` (default /rigid_body_sim) through `nh`, once
+  // Start() has connected it.
   explicit LockstepController(const ros::NodeHandle& nh,
-                              const std::string& node = "/rigid_body_sim");
+                              const std::string& node = "/rigid_body_sim",
+                              AnswerThread answer_thread = AnswerThread::kQueue);
   virtual ~LockstepController() = default;
   // Its subscription calls this object: it stays where it was made.
   LockstepController(const LockstepController&) = delete;
@@ -46,6 +63,8 @@ class LockstepController {
 
   ros::NodeHandle nh_;
   std::string node_;
+  // With AnswerThread::kDelivering: the queue of ~bodies' subscription.
+  std::unique_ptr<ros::CallbackQueueInterface> delivering_queue_;
   ros::Publisher answers_;
   ros::Subscriber bodies_;
 };

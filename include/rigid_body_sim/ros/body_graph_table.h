@@ -19,7 +19,7 @@ namespace rigid_body_sim {
 
 class BodyGraphTable {
  public:
-  // A graph name resolved as the node resolves it (ResolveGraphName).
+  // A graph name resolved as the node resolves it (ResolveGraphName, node_handles.h).
   using NameResolver = std::function<std::string(const std::string&)>;
 
   explicit BodyGraphTable(NameResolver resolve);
@@ -53,9 +53,5 @@ class BodyGraphTable {
   // Every body's resolved topic namespace → the body.
   std::unordered_map<std::string, std::string> namespaces_;
 };
-
-// `name` resolved in the node's namespace, with its remappings
-// (ros::names::resolve; "~x" in the node's private namespace).
-std::string ResolveGraphName(const std::string& name);
 
 }  // namespace rigid_body_sim

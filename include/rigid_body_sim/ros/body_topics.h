@@ -76,9 +76,10 @@ class BodyTopics {
   using ConnectCallback = std::function<void(core::BodyId id, Output output,
                                              const ros::SingleSubscriberPublisher& subscriber)>;
 
-  // With `enabled` false no per-body topic is ever advertised.
-  BodyTopics(bool enabled, WrenchCallback on_wrench, ActuatorCallback on_actuators,
-             ConnectCallback on_connect);
+  // With `enabled` false no per-body topic is ever advertised. The topics
+  // take `private_nh`'s callback queue.
+  BodyTopics(const ros::NodeHandle& private_nh, bool enabled, WrenchCallback on_wrench,
+             ActuatorCallback on_actuators, ConnectCallback on_connect);
   // Stops the advertising thread; topics not yet advertised never are.
   ~BodyTopics();
   BodyTopics(const BodyTopics&) = delete;
@@ -115,6 +116,7 @@ class BodyTopics {
   void Advertise(const std::shared_ptr<Topics>& topics);
   void Push(Task task);
 
+  const ros::NodeHandle private_nh_;
   const bool enabled_;
   const WrenchCallback on_wrench_;
   const ActuatorCallback on_actuators_;

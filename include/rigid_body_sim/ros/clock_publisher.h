@@ -18,7 +18,8 @@ class ClockPublisher {
  public:
   // Advertises /clock if this node publishes it. While `held_start` holds,
   // a subscriber that connects receives its stamp. `held_start` must outlive it.
-  ClockPublisher(const NodeSettings& settings, const HeldStart& held_start);
+  ClockPublisher(const ros::NodeHandle& private_nh, const NodeSettings& settings,
+                 const HeldStart& held_start);
 
   // Sends `stamp`, unless it is not later than the last one sent: /clock
   // strictly increases.

@@ -18,6 +18,7 @@
 
 #include "rigid_body_sim/ros/lockstep_gate.h"
 #include "rigid_body_sim/ros/log_thread.h"
+#include "rigid_body_sim/ros/run_flag.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/state_publisher.h"
 #include "rigid_body_sim/ros/step_lattice.h"
@@ -37,9 +38,11 @@ class LockstepDriver {
   // Subscribes to ~lockstep_wrenches and ~lockstep_answers: an answer
   // stamped after the last published cycle is rejected through `intake`
   // (counted, warned), any other answer goes to `take_entries` or
-  // `take_answer`. `intake` must outlive it.
+  // `take_answer`. Its waits end early once `run_flag` stops. `intake` and
+  // `run_flag` must outlive it.
   LockstepDriver(const ros::NodeHandle& private_nh, const NodeSettings& settings,
-                 WrenchIntake* intake, TakeEntries take_entries, TakeAnswer take_answer);
+                 const RunFlag* run_flag, WrenchIntake* intake, TakeEntries take_entries,
+                 TakeAnswer take_answer);
   // The subscription calls this object: it stays where it was made.
   LockstepDriver(const LockstepDriver&) = delete;
   LockstepDriver& operator=(const LockstepDriver&) = delete;
@@ -48,7 +51,7 @@ class LockstepDriver {
   // ~lockstep_wrenches or ~lockstep_answers and subscribes to `publisher`'s
   // ~bodies, or
   // ~lockstep_startup_timeout (then counted as a timeout, with a warning).
-  // Serves the global callback queue meanwhile.
+  // Serves the stepping thread's callback queue meanwhile.
   void WaitForControllers(const StatePublisher& publisher);
   // K0 under lockstep: `first_index` moved up to the next publish cycle, once
   // the clock reaches it, so that every run meets its controllers at the same
@@ -82,6 +85,7 @@ class LockstepDriver {
              const char* topic);
 
   ros::NodeHandle private_nh_;
+  const RunFlag& run_flag_;
   const LockstepSettings settings_;
   const double rate_hz_;
   LockstepGate gate_;

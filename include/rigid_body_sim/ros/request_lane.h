@@ -23,8 +23,8 @@ namespace rigid_body_sim {
 
 class RequestLane {
  public:
-  // Must be made on the stepping thread (the one that will serve the global
-  // callback queue); serves its own queue from then on.
+  // Must be made on the stepping thread (the one that will serve
+  // `private_nh`'s callback queue); serves its own queue from then on.
   explicit RequestLane(const ros::NodeHandle& private_nh);
   // Stops serving; a request waiting for the stepping thread gives up. The
   // stepping thread must serve no more callbacks by then.
@@ -51,6 +51,7 @@ class RequestLane {
   void Post(std::function<void()> run);
 
   std::thread::id stepping_thread_;
+  ros::CallbackQueueInterface& stepping_queue_;
   std::atomic<bool> stopping_{false};
   std::atomic<bool> trim_wanted_{false};
   ros::CallbackQueue queue_;

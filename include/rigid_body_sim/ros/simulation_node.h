@@ -6,7 +6,9 @@
 // Threading: the world is touched only by the thread that calls Run(). The
 // loop steps the world when the pacer says a step is due (and, under
 // lockstep, when the controllers have answered the last published cycle)
-// and, while waiting, serves the global callback queue. Callbacks therefore
+// and, while waiting, serves the private node handle's callback queue (the
+// global one in a program of its own, the nodelet's in a manager:
+// node_handles.h). Callbacks therefore
 // run between steps, never during one, and need no lock; a wrench received
 // before step n acts on step n exactly. The requests that are slow to read
 // (~spawn_body, dynamic_reconfigure, the services that name a body) are read
@@ -23,6 +25,7 @@
 #include <memory>
 #include <optional>
 
+#include <ros/callback_queue.h>
 #include <ros/ros.h>
 
 #include "rigid_body_sim/core/step_pacer.h"
@@ -35,6 +38,7 @@
 #include "rigid_body_sim/ros/loop_control.h"
 #include "rigid_body_sim/ros/node_diagnostics.h"
 #include "rigid_body_sim/ros/node_status.h"
+#include "rigid_body_sim/ros/run_flag.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/service_front.h"
 #include "rigid_body_sim/ros/site_sensors.h"
@@ -49,10 +53,12 @@ namespace rigid_body_sim {
 
 class SimulationNode : public LoopControl {
  public:
-  // Throws std::invalid_argument if the world rejects the scene.
-  SimulationNode(const ros::NodeHandle& private_nh, Scene scene);
+  // Throws std::invalid_argument if the world rejects the scene. Every
+  // callback goes to `private_nh`'s queue, which must be a
+  // ros::CallbackQueue. `run_flag` must outlive it.
+  SimulationNode(const ros::NodeHandle& private_nh, Scene scene, const RunFlag* run_flag);
 
-  // Steps, publishes and serves callbacks until ROS shuts down.
+  // Steps, publishes and serves callbacks until `run_flag` stops.
   void Run();
 
  private:
@@ -80,6 +86,9 @@ class SimulationNode : public LoopControl {
   std::uint64_t StepWhilePaused(std::uint32_t steps) override;
   void ApplyRuntimeSettings(const NodeSettings& next) override;  // runtime_settings.cpp
 
+  const std::string name_;  // the node's, for its log lines
+  const RunFlag& run_flag_;
+  ros::CallbackQueue& callbacks_;
   NodeSettings settings_;  // the runtime keys change with ApplyRuntimeSettings
   BodyGraphTable graph_;   // before world_: its listeners read a body's entry
   core::World world_;

@@ -53,7 +53,8 @@ class SiteSensors : public core::BodyListener {
  public:
   // Takes the sensors of `world`'s bodies from `graph`, which must outlive
   // this object, and follows the bodies added and removed later.
-  SiteSensors(const NodeSettings& settings, const core::World& world, const BodyGraphTable& graph);
+  SiteSensors(const ros::NodeHandle& private_nh, const NodeSettings& settings,
+              const core::World& world, const BodyGraphTable& graph);
 
   void OnBodyAdded(const core::World& world, core::BodyId id) override;
   void OnBodyRemoved(const core::World& world, core::BodyId id) override;
@@ -83,6 +84,7 @@ class SiteSensors : public core::BodyListener {
     std::vector<Sensor> sensors;
   };
 
+  const ros::NodeHandle private_nh_;  // topics take its callback queue
   const std::string world_frame_;
   const std::string tf_prefix_;
   const BodyGraphTable& graph_;

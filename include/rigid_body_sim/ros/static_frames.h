@@ -31,7 +31,8 @@ class StaticFrames : public core::BodyListener {
  public:
   // Advertises /tf_static and sends the sites of the bodies in `world`.
   // `graph` holds the graph names of the world's bodies and must outlive it.
-  StaticFrames(const std::string& tf_prefix, const core::World& world, const BodyGraphTable& graph);
+  StaticFrames(const ros::NodeHandle& private_nh, const std::string& tf_prefix,
+               const core::World& world, const BodyGraphTable& graph);
 
   void OnBodyAdded(const core::World& world, core::BodyId id) override;
   void OnBodyRemoved(const core::World& world, core::BodyId id) override;

@@ -1,6 +1,6 @@
 #!/usr/bin/python3
 """The quadrotor example as a downstream test: launch/quadrotor.launch's
-controller (src/examples/quadrotor_controller.cpp, on the C++ client's
+controller (src/examples/quadrotor_controller.h, on the C++ client's
 LockstepController, commanding the four rotors through its mixer) flies the
 URDF quadrotor in lockstep with the simulator (quadrotor/run.launch), its
 rotors thrusters with a 20 ms lag and 8.55 N at most, its drag relative to
@@ -9,9 +9,12 @@ the wind.
 - From rest to a hover at (0, 0, 1) m: after 5 s of simulated time
   base_link's origin (its odometry) is within 1 cm of the setpoint, its yaw
   within 1 mrad of 90 degrees and its z axis within 1 mrad of the vertical;
-  two runs, one on a quiet machine and one with every core kept busy by
+  three runs, one on a quiet machine and two with every core kept busy by
   processes this test starts and stops, reach bit-identical states at every
-  cycle (equal state hashes), with no lockstep timeout.
+  cycle (equal state hashes), with no lockstep timeout: node and controller
+  as programs over TCP (quiet, then loaded), and as nodelets of one manager
+  (in_process:=true, loaded), the controller answering on the node's
+  stepping thread.
 - The same in gusts of 1 m/s standard deviation on each axis: from 5 s to
   25 s base_link's origin stays within 10 cm of the setpoint.
 - A climb to 20 m asks more than the rotors give: the mixer clips, and
@@ -129,8 +132,8 @@ class Quadrotor(unittest.TestCase):
         self.assertEqual(diagnostics['lockstep_timeouts'], '0', ns)
         return run, poses
 
-    def fly(self, ns):
-        run, poses = self.run_to_end(ns)
+    def fly(self, ns, **args):
+        run, poses = self.run_to_end(ns, **args)
         pose = poses[run.last_stamp]
         q = pose.orientation
         yaw, tilt = yaw_and_tilt([q.x, q.y, q.z, q.w])
@@ -148,12 +151,14 @@ class Quadrotor(unittest.TestCase):
                 for _ in range(os.cpu_count() or 2)]
         try:
             loaded = self.fly('loaded')
+            in_process = self.fly('loaded_nodelets', in_process='true')
         finally:
             for process in busy:
                 process.kill()
                 process.wait()
         self.assertEqual(len(quiet), CYCLES + 1)
         self.assertEqual(quiet, loaded)
+        self.assertEqual(quiet, in_process)
 
     def test_hover_in_gusts(self):
         cycles = 2500  # 25 s
