@@ -52,7 +52,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene)
           [this](const std::string& body, const ActuatorCommand& msg) {
             front_.OnActuatorCommand(body, msg);
           }),
-      sensors_(settings_, world_, graph_),
+      sensors_(settings_, world_, graph_, publisher_.body_topics()),
       static_frames_(settings_.tf_prefix, world_, graph_),
       diagnostics_(private_nh, settings_, world_),
       recorder_(MakeRecorder(private_nh, settings_, &lattice_)),
