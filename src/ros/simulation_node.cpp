@@ -210,7 +210,10 @@ NodeStatus SimulationNode::Status() const {
     status.lockstep = {gate.late_answers(), gate.future_stamps(), gate.timeouts()};
   }
   status.state_hash = state_hashes_.latest();
-  if (recorder_) status.record_error = recorder_->error();
+  if (recorder_) {
+    status.record_error = recorder_->error();
+    status.record_dropped = recorder_->dropped();
+  }
   return status;
 }
 
