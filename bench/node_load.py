@@ -24,13 +24,16 @@ resolution 2: 8 particles each) and measures
      tumbling boxes, free and then pushed as in part 5, ns per body-step from
      a persistent service client, next to throughput_bench's
      BM_WorldStep/casimir_splitting4/free/1000 and
-     BM_WorldStepLoaded/world_force/1000 on the node's core in the same run.
+     BM_WorldStepLoaded/world_force/1000 on the node's core in the same run;
+  7. the cost of ~record: the quadrotor of config/quadrotor.yaml and 1,000 pushed boxes at rate 1000
+     with publish_rate 100, each without and with ~record to a bag: the real-time factor, overruns,
+     the bag's size and the diagnostics keys record_dropped and record_error.
 
 Writes a Markdown report (also printed) to bench/results/node_load.md and one
 CSV row per run to bench/results/node_load.csv. Without part flags every part
-runs; --capacity, --pushed and --step-cost run only the parts named.
+runs; --capacity, --pushed, --intake, --step-cost and --record run only the parts named.
 
-  bench/node_load.py [--quick] [--capacity] [--pushed] [--step-cost] [--sizes N ...]
+  bench/node_load.py [--quick] [--capacity] [--pushed] [--intake] [--step-cost] [--record] [--sizes N ...]
                      [--per-body-topics true|false] [--workspace PATH] [--port 11395]
                      [--out DIR]
 
@@ -62,6 +65,8 @@ def parse_args():
                         help="run the ~step cost part (6); with no part flag, every part runs")
     parser.add_argument("--intake", action="store_true",
                         help="run the wrench intake part (3); with no part flag, every part runs")
+    parser.add_argument("--record", action="store_true",
+                        help="run the ~record cost part (7); with no part flag, every part runs")
     parser.add_argument("--per-body-topics", choices=["true", "false"], default="true",
                         help="the scenes' ~per_body_topics (default true)")
     add_node_bench_arguments(parser, 11395, "node_load.md and node_load.csv")
@@ -94,12 +99,13 @@ def run_parts(bench):
     from node_load_cpu import part_cpu
     from node_load_intake import part_intake
     from node_load_latency import part_latency
+    from node_load_record import part_record
     from node_load_report import CSV_FIELDS, write_report
     from node_load_step_cost import part_step_cost
 
     args = bench.args
     quick = args.quick
-    every_part = not (args.capacity or args.pushed or args.step_cost or args.intake)
+    every_part = not (args.capacity or args.pushed or args.step_cost or args.intake or args.record)
     start = time.monotonic()
     bench.log("workspace %s, master %s, node on core %d, logs in %s"
               % (bench.workspace, os.environ["ROS_MASTER_URI"], args.node_cpu, bench.log_dir))
@@ -121,6 +127,8 @@ def run_parts(bench):
             results["pushed"] = part_capacity(bench, quick, time.monotonic() + (20 if quick else 140), pushed=True)
         if every_part or args.step_cost:
             results["step_cost"] = part_step_cost(bench, quick)
+        if every_part or args.record:
+            results["record"] = part_record(bench, quick)
     finally:
         elapsed = time.monotonic() - start
         report = write_report(bench, results, quick, elapsed)

@@ -5,6 +5,7 @@ import os
 
 from bench_report import cpu_model, git_head, has_uncommitted_changes, md_table
 from node_load_push import PUSH_ENTRIES_PER_ARRAY, PUSH_FORCE_N
+from node_load_record import RECORD_BODIES, RECORD_PUBLISH_RATE_HZ, RECORD_RATE_HZ
 from node_load_run import NOISE_OVERRUNS_PER_S
 from node_load_step_cost import CORE_STEP_BENCHMARKS, STEP_COST_BODIES, STEP_COST_STEPS
 
@@ -16,7 +17,8 @@ CSV_FIELDS = ["part", "label", "n_bodies", "rate_hz", "publish_rate_hz", "subscr
               "pub_msgs_per_s", "pub_busy_percent", "wrenches_sent_per_s", "wrenches_taken_per_s",
               "latency_median_ms", "latency_p90_ms", "latency_min_ms", "latency_max_ms",
               "stamp_lag_median_ms", "trials", "held_wrenches", "push_dv_dt_mps2", "ns_per_body_step",
-              "cpu_ns_per_body_step", "core_ns_per_body_step", "node_to_core", "passed", "load_ok", "note"]
+              "cpu_ns_per_body_step", "core_ns_per_body_step", "node_to_core", "record", "bag_mbyte",
+              "record_dropped", "passed", "load_ok", "note"]
 
 
 def capacity_summary(kind, capacity):
@@ -49,6 +51,7 @@ def write_report(bench, results, quick, elapsed):
     capacity, pushed = results.get("capacity"), results.get("pushed")
     cpu_rows, intake_rows = results.get("cpu", []), results.get("intake", [])
     latency_rows, step_cost = results.get("latency", []), results.get("step_cost")
+    record_rows = results.get("record", [])
     loads = [r["loadavg1"] for r in bench.rows if "loadavg1" in r]
     integrator = next((r.get("integrator") for r in bench.rows if r.get("integrator")), "")
     commit = git_head() + (" (with uncommitted changes)" if has_uncommitted_changes() else "")
@@ -90,6 +93,11 @@ def write_report(bench, results, quick, elapsed):
         summary.append(("~step, pushed / free ns per body-step: node, core",
                         "%.2fx, %.2fx" % (pushed_cost["ns_per_body_step"] / free["ns_per_body_step"],
                                           pushed_cost["core_ns_per_body_step"] / free["core_ns_per_body_step"])))
+    for r in record_rows:
+        summary.append(("%s at %d Hz, publish_rate %d, %s: RTF in the window (min)"
+                        % (r["label"].split("_")[0] if r["n_bodies"] == 1 else "%d pushed bodies" % r["n_bodies"],
+                           r["rate_hz"], r["publish_rate_hz"], "recorded" if r["record"] else "not recorded"),
+                        "%.4f (%.3f), %d dropped" % (r["rtf_window"], r["rtf_min"], r["record_dropped"])))
     md.append(md_table(["figure", "value"], summary))
     md.append("")
 
@@ -199,5 +207,25 @@ def write_report(bench, results, quick, elapsed):
             [[r["n_bodies"], "pushed" if "pushed" in r["label"] else "free", STEP_COST_STEPS, r["trials"],
               r["ns_per_body_step"], r["cpu_ns_per_body_step"], r["core_ns_per_body_step"],
               "%.2f" % r["node_to_core"], "%.2f" % r["loadavg1"]] for r in step_cost]))
+        md.append("")
+
+    if record_rows:
+        md.append("## 7. ~record: rate %d Hz, publish_rate %d, without and with a bag"
+                  % (RECORD_RATE_HZ, RECORD_PUBLISH_RATE_HZ))
+        md.append("")
+        md.append("The quadrotor of config/quadrotor.yaml (no controller: it falls, with drag) and %d boxes "
+                  "pushed as in part 5, each run once without and once with `~record` to a bag in the run's log "
+                  "directory (each publish cycle's ~bodies and state hash, and the pushes), nobody subscribed. "
+                  "Window and bare loop as in part 1. Pass = RTF min >= 0.995, nothing dropped "
+                  "(`record_dropped`) and no `record_error`."
+                  % RECORD_BODIES)
+        md.append("")
+        md.append(md_table(
+            ["run", "bodies", "window s", "RTF window", "RTF min", "overruns", "bare loop overruns",
+             "step mean us", "step max us", "node CPU %", "bag MB", "dropped", "load avg", "pass"],
+            [[r["label"], r["n_bodies"], r["window_s"], "%.4f" % r["rtf_window"], "%.3f" % r["rtf_min"],
+              r["overruns"], r["floor_overruns"], r["step_mean_us"], r["step_max_us"], r["cpu_percent"],
+              "%.1f" % r["bag_mbyte"], r["record_dropped"], "%.2f" % r["loadavg1"],
+              "yes" if r["passed"] else "no"] for r in record_rows]))
         md.append("")
     return "\n".join(md)

@@ -69,7 +69,7 @@ add_rostest(test/ros/cpp_examples.test DEPENDENCIES rigid_body_sim_node step_cli
 # The node's pieces that need no master: message conversions, the per-body
 # outputs and the sites' static transforms, the wrench and request checks, the
 # scene and IMU noise parsers, the runtime keys' checks and configuration, the bodies
-# read from URDF.
+# read from URDF, ~record's queue.
 catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_intake_test.cpp
   test/ros/body_state_request_test.cpp test/ros/scene_params_test.cpp
   test/ros/runtime_keys_test.cpp test/ros/runtime_config_test.cpp test/ros/body_outputs_test.cpp
@@ -79,7 +79,8 @@ catkin_add_gtest(ros_units_test test/ros/conversions_test.cpp test/ros/wrench_in
   test/ros/urdf_file_policy_test.cpp
   test/ros/wrench_frame_test.cpp test/ros/scene_frames_test.cpp
   test/ros/static_frames_test.cpp test/ros/actuator_command_check_test.cpp
-  test/ros/scene_actuators_test.cpp test/ros/scene_sensors_test.cpp)
+  test/ros/scene_actuators_test.cpp test/ros/scene_sensors_test.cpp
+  test/ros/input_recorder_test.cpp)
 # urdf_body_test and scene_frames_test read config/quadrotor.urdf from the source tree.
 target_compile_definitions(ros_units_test PRIVATE
   RBS_SOURCE_DIR="${PROJECT_SOURCE_DIR}")

@@ -12,6 +12,8 @@ namespace rigid_body_sim {
 namespace {
 
 constexpr std::uint32_t kStateQueueSize = 10;
+// A sensor's samples may come every step, faster than publish cycles.
+constexpr std::uint32_t kSensorQueueSize = 100;
 constexpr std::uint32_t kWrenchQueueSize = 100;
 
 // Advertises `publisher` of `owner` with its count (and `total`, if given)
@@ -19,7 +21,7 @@ constexpr std::uint32_t kWrenchQueueSize = 100;
 // subscriber. They run on the stepping thread and may still be queued after
 // the body went: they act only while it is there.
 template <typename Msg>
-void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic,
+void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic, std::uint32_t queue_size,
                       const std::shared_ptr<BodyTopics::Topics>& owner, BodyTopics::Output output,
                       CountedPublisher* publisher, const BodyTopics::ConnectCallback& on_connect,
                       int* total = nullptr) {
@@ -34,7 +36,7 @@ void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic,
     return true;
   };
   publisher->publisher = nh.advertise<Msg>(
-      topic, kStateQueueSize,
+      topic, queue_size,
       [count, &on_connect, id, output](const ros::SingleSubscriberPublisher& subscriber) {
         if (count(+1)) on_connect(id, output, subscriber);
       },
@@ -43,15 +45,14 @@ void AdvertiseCounted(ros::NodeHandle& nh, const std::string& topic,
 
 }  // namespace
 
-BodyTopics::BodyTopics(const ros::NodeHandle& private_nh, bool enabled, WrenchCallback on_wrench,
+BodyTopics::BodyTopics(const ros::NodeHandle& private_nh, bool outputs, WrenchCallback on_wrench,
                        ActuatorCallback on_actuators, ConnectCallback on_connect)
     : private_nh_(private_nh),
-      enabled_(enabled),
+      outputs_(outputs),
       on_wrench_(std::move(on_wrench)),
       on_actuators_(std::move(on_actuators)),
-      on_connect_(std::move(on_connect)) {
-  if (enabled_) worker_ = std::thread(&BodyTopics::Work, this);
-}
+      on_connect_(std::move(on_connect)),
+      worker_(&BodyTopics::Work, this) {}
 
 BodyTopics::~BodyTopics() {
   {
@@ -64,16 +65,18 @@ BodyTopics::~BodyTopics() {
 
 void BodyTopics::Add(core::BodyId id, const std::string& body, const std::string& topic_namespace,
                      std::optional<std::vector<std::string>> joint_names,
-                     std::vector<std::string> actuator_names) {
+                     std::vector<std::string> actuator_names,
+                     std::vector<SensorTopic> sensor_topics) {
   auto topics = std::make_shared<Topics>();
   topics->id = id;
   topics->body = body;
   topics->topic_namespace = topic_namespace;
   topics->joint_names = std::move(joint_names);
   topics->actuator_names = std::move(actuator_names);
+  topics->sensor_topics = std::move(sensor_topics);
   bodies_.Insert(id, topics);
   ++body_count_;
-  if (enabled_) Push({std::move(topics), true});
+  if (HasTopics(*topics)) Push({std::move(topics), true});
 }
 
 void BodyTopics::Remove(core::BodyId id) {
@@ -82,7 +85,7 @@ void BodyTopics::Remove(core::BodyId id) {
   step_record_subscribers_ -= topics->imu.subscribers + topics->applied_wrench.subscribers;
   bodies_.Erase(id);
   --body_count_;
-  if (enabled_) Push({std::move(topics), false});
+  if (HasTopics(*topics)) Push({std::move(topics), false});
 }
 
 void BodyTopics::Push(Task task) {
@@ -118,7 +121,8 @@ void BodyTopics::Work() {
       task.topics->actuator_states.publisher.shutdown();
       task.topics->wrench.shutdown();
       task.topics->actuators.shutdown();
-      advertised_.fetch_sub(1, std::memory_order_relaxed);
+      for (CountedPublisher& sensor : task.topics->sensors) sensor.publisher.shutdown();
+      if (outputs_) advertised_.fetch_sub(1, std::memory_order_relaxed);
     }
   }
 }
@@ -131,21 +135,41 @@ void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
   // them go on return; the publishers and the subscriber hold node handles of
   // their own.
   ros::NodeHandle nh = HandleIn(private_nh_, topics->topic_namespace);
+  if (outputs_) AdvertiseOutputs(nh, topics);
+  // Each sensor's samples go out from the step that reaches them, not to a
+  // subscriber as it connects (kSensor).
+  topics->sensors.resize(topics->sensor_topics.size());
+  for (std::size_t k = 0; k < topics->sensor_topics.size(); ++k) {
+    const SensorTopic& sensor = topics->sensor_topics[k];
+    if (sensor.type == SensorType::kImu) {
+      AdvertiseCounted<sensor_msgs::Imu>(nh, sensor.name, kSensorQueueSize, topics, Output::kSensor,
+                                         &topics->sensors[k], on_connect_);
+    } else {
+      AdvertiseCounted<nav_msgs::Odometry>(nh, sensor.name, kSensorQueueSize, topics,
+                                           Output::kSensor, &topics->sensors[k], on_connect_);
+    }
+  }
+  topics->advertised.store(true, std::memory_order_release);
+  if (outputs_) advertised_.fetch_add(1, std::memory_order_relaxed);
+}
+
+void BodyTopics::AdvertiseOutputs(ros::NodeHandle& nh, const std::shared_ptr<Topics>& topics) {
   const std::string& body = topics->body;
-  AdvertiseCounted<geometry_msgs::PoseStamped>(nh, "pose", topics, Output::kPose, &topics->pose,
-                                               on_connect_);
-  AdvertiseCounted<geometry_msgs::TwistStamped>(nh, "twist", topics, Output::kTwist, &topics->twist,
-                                                on_connect_);
-  AdvertiseCounted<nav_msgs::Odometry>(nh, "odom", topics, Output::kOdom, &topics->odom,
-                                       on_connect_);
-  AdvertiseCounted<sensor_msgs::Imu>(nh, "imu", topics, Output::kImu, &topics->imu, on_connect_,
-                                     &step_record_subscribers_);
-  AdvertiseCounted<geometry_msgs::WrenchStamped>(nh, "applied_wrench", topics,
+  AdvertiseCounted<geometry_msgs::PoseStamped>(nh, "pose", kStateQueueSize, topics, Output::kPose,
+                                               &topics->pose, on_connect_);
+  AdvertiseCounted<geometry_msgs::TwistStamped>(nh, "twist", kStateQueueSize, topics,
+                                                Output::kTwist, &topics->twist, on_connect_);
+  AdvertiseCounted<nav_msgs::Odometry>(nh, "odom", kStateQueueSize, topics, Output::kOdom,
+                                       &topics->odom, on_connect_);
+  AdvertiseCounted<sensor_msgs::Imu>(nh, "imu", kStateQueueSize, topics, Output::kImu, &topics->imu,
+                                     on_connect_, &step_record_subscribers_);
+  AdvertiseCounted<geometry_msgs::WrenchStamped>(nh, "applied_wrench", kStateQueueSize, topics,
                                                  Output::kAppliedWrench, &topics->applied_wrench,
                                                  on_connect_, &step_record_subscribers_);
   if (topics->joint_names) {
-    AdvertiseCounted<sensor_msgs::JointState>(nh, "joint_states", topics, Output::kJointStates,
-                                              &topics->joint_states, on_connect_);
+    AdvertiseCounted<sensor_msgs::JointState>(nh, "joint_states", kStateQueueSize, topics,
+                                              Output::kJointStates, &topics->joint_states,
+                                              on_connect_);
   }
   const WrenchCallback& on_wrench = on_wrench_;
   topics->wrench = nh.subscribe<geometry_msgs::WrenchStamped>(
@@ -155,7 +179,7 @@ void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
       },
       ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
   if (!topics->actuator_names.empty()) {
-    AdvertiseCounted<sensor_msgs::JointState>(nh, "actuator_states", topics,
+    AdvertiseCounted<sensor_msgs::JointState>(nh, "actuator_states", kStateQueueSize, topics,
                                               Output::kActuatorStates, &topics->actuator_states,
                                               on_connect_);
     const ActuatorCallback& on_actuators = on_actuators_;
@@ -164,8 +188,6 @@ void BodyTopics::Advertise(const std::shared_ptr<Topics>& topics) {
         [&on_actuators, body](const ActuatorCommand::ConstPtr& msg) { on_actuators(body, *msg); },
         ros::VoidConstPtr(), ros::TransportHints().tcpNoDelay());
   }
-  topics->advertised.store(true, std::memory_order_release);
-  advertised_.fetch_add(1, std::memory_order_relaxed);
 }
 
 }  // namespace rigid_body_sim

@@ -25,9 +25,10 @@ struct InputRecorder::Bag {
 };
 
 InputRecorder::InputRecorder(const std::string& path, RecordedParameters parameters,
-                             StampOf stamp_of)
+                             StampOf stamp_of, std::size_t max_queued_bytes)
     : path_(path),
       stamp_of_(std::move(stamp_of)),
+      max_queued_bytes_(max_queued_bytes),
       bag_(std::make_unique<Bag>()),
       parameters_(std::move(parameters)) {
   try {
@@ -61,28 +62,44 @@ void InputRecorder::Record(RecordedInput input, std::uint64_t step) {
   input.sequence = next_sequence_++;
   input.step = step;
   input.header.stamp = stamp_of_(step);
-  {
-    std::lock_guard<std::mutex> lock(mutex_);
-    if (error_) return;
-    queue_.emplace_back(std::move(input));
-  }
-  wake_.notify_one();
+  const std::size_t bytes = ros::serialization::serializationLength(input);
+  Push(std::move(input), bytes, step);
 }
 
 void InputRecorder::RecordCycle(std::uint64_t step, std::vector<double> hash_values,
                                 BodyStateArray bodies) {
-  Cycle cycle{next_sequence_++, step, stamp_of_(step), std::move(hash_values), std::move(bodies)};
+  const std::size_t bytes = ros::serialization::serializationLength(bodies) +
+                            hash_values.size() * sizeof(double) + sizeof(Cycle);
+  Push(Cycle{next_sequence_++, step, stamp_of_(step), std::move(hash_values), std::move(bodies)},
+       bytes, step);
+}
+
+void InputRecorder::Push(Entry entry, std::size_t bytes, std::uint64_t step) {
   {
     std::lock_guard<std::mutex> lock(mutex_);
-    if (error_) return;
-    queue_.emplace_back(std::move(cycle));
+    if (write_error_) return;
+    if (!queue_.empty() && queued_bytes_ + bytes > max_queued_bytes_) {
+      if (dropped_++ == 0) first_dropped_step_ = step;
+      return;
+    }
+    queued_bytes_ += bytes;
+    queue_.emplace_back(std::move(entry), bytes);
   }
   wake_.notify_one();
 }
 
 std::optional<std::string> InputRecorder::error() const {
   std::lock_guard<std::mutex> lock(mutex_);
-  return error_;
+  if (write_error_ || dropped_ == 0) return write_error_;
+  return "~record: the disk does not keep up with '" + path_ + "': the queue of what is still " +
+         "to be written is full (" + std::to_string(max_queued_bytes_ >> 20) + " MB), " +
+         std::to_string(dropped_) + " inputs and cycles dropped from step " +
+         std::to_string(first_dropped_step_) + " on; the replay refuses the bag";
+}
+
+std::uint64_t InputRecorder::dropped() const {
+  std::lock_guard<std::mutex> lock(mutex_);
+  return dropped_;
 }
 
 void InputRecorder::Run() {
@@ -97,11 +114,11 @@ void InputRecorder::Run() {
       last_stamp = parameters.header.stamp;
       lock.lock();
     }
-    std::uint64_t written = 0;
     while (true) {
       wake_.wait(lock, [this] { return stopping_ || !queue_.empty(); });
       if (queue_.empty()) break;  // stopping, with everything written
-      const Entry entry = std::move(queue_.front());
+      const Entry entry = std::move(queue_.front().first);
+      queued_bytes_ -= queue_.front().second;
       queue_.pop_front();
       lock.unlock();
       Write(entry);
@@ -114,23 +131,27 @@ void InputRecorder::Run() {
             }
           },
           entry);
-      ++written;
       lock.lock();
     }
     const bool started = started_;
+    // Every input and cycle, dropped ones too: a bag that misses some does
+    // not add up to its END.
+    const std::uint64_t recorded = next_sequence_;
     lock.unlock();
     if (started) {
       RecordedInput end;
       end.kind = RecordedInput::END;
-      end.sequence = written;
+      end.sequence = recorded;
       end.header.stamp = last_stamp;
       bag_->bag.write(kRecordInputsTopic, BagTime(last_stamp), end);
     }
     bag_->bag.close();
   } catch (const rosbag::BagException& error) {
     if (!lock.owns_lock()) lock.lock();
-    error_ = "~record: writing '" + path_ + "' failed, the recording stopped: " + error.what();
+    write_error_ =
+        "~record: writing '" + path_ + "' failed, the recording stopped: " + error.what();
     queue_.clear();
+    queued_bytes_ = 0;
     // rosbag::Bag's close, and so its destructor, would write the index
     // again and throw again: the broken bag is left open, not destroyed.
     static_cast<void>(bag_.release());

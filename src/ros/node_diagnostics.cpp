@@ -211,6 +211,7 @@ void NodeDiagnostics::Compose(const NodeStatus& node, const core::World& world,
     status.addf("state_hash_stamp", "%u.%09u", node.state_hash->stamp.sec,
                 node.state_hash->stamp.nsec);
   }
+  if (node.record_dropped) status.add("record_dropped", *node.record_dropped);
   if (node.record_error) status.add("record_error", *node.record_error);
   status.add("dropped_couples", world.dropped_couple_count());
   status.add("frozen_bodies", world.frozen_count());

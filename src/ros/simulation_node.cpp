@@ -57,7 +57,7 @@ SimulationNode::SimulationNode(const ros::NodeHandle& private_nh, Scene scene,
           [this](const std::string& body, const ActuatorCommand& msg) {
             front_.OnActuatorCommand(body, msg);
           }),
-      sensors_(private_nh, settings_, world_, graph_),
+      sensors_(settings_, world_, graph_, publisher_.body_topics()),
       static_frames_(private_nh, settings_.tf_prefix, world_, graph_),
       diagnostics_(private_nh, settings_, world_),
       recorder_(MakeRecorder(private_nh, settings_, &lattice_)),
@@ -214,7 +214,10 @@ NodeStatus SimulationNode::Status() const {
     status.lockstep = {gate.late_answers(), gate.future_stamps(), gate.timeouts()};
   }
   status.state_hash = state_hashes_.latest();
-  if (recorder_) status.record_error = recorder_->error();
+  if (recorder_) {
+    status.record_error = recorder_->error();
+    status.record_dropped = recorder_->dropped();
+  }
   return status;
 }
 

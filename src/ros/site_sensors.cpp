@@ -10,12 +10,9 @@
 #include "rigid_body_sim/core/motion_capture_noise.h"
 #include "rigid_body_sim/core/site_imu.h"
 #include "rigid_body_sim/ros/conversions.h"
-#include "rigid_body_sim/ros/node_handles.h"
 
 namespace rigid_body_sim {
 namespace {
-
-constexpr std::uint32_t kSensorQueueSize = 100;
 
 // σ² on the diagonal of a row-major 3x3 covariance, zeros elsewhere.
 void SetDiagonal3(double stddev, boost::array<double, 9>* covariance) {
@@ -92,12 +89,12 @@ nav_msgs::Odometry ToSiteOdometryMsg(const SensorSample& sample, const core::Sit
   return msg;
 }
 
-SiteSensors::SiteSensors(const ros::NodeHandle& private_nh, const NodeSettings& settings,
-                         const core::World& world, const BodyGraphTable& graph)
-    : private_nh_(private_nh),
-      world_frame_(settings.world_frame),
+SiteSensors::SiteSensors(const NodeSettings& settings, const core::World& world,
+                         const BodyGraphTable& graph, const BodyTopics& topics)
+    : world_frame_(settings.world_frame),
       tf_prefix_(settings.tf_prefix),
-      graph_(graph) {
+      graph_(graph),
+      topics_(topics) {
   for (std::size_t index = 0; index < world.size(); ++index) OnBodyAdded(world, world.id(index));
 }
 
@@ -107,7 +104,6 @@ void SiteSensors::OnBodyAdded(const core::World& world, core::BodyId id) {
   if (defs.empty()) return;
   const std::size_t index = *world.IndexOf(id);
   const core::BodyFrames& frames = world.frames(id);
-  ros::NodeHandle nh = HandleIn(private_nh_, graph_.TopicNamespace(name));
   BodySensors body{id, {}};
   body.sensors.reserve(defs.size());
   for (std::uint32_t k = 0; k < defs.size(); ++k) {
@@ -120,15 +116,9 @@ void SiteSensors::OnBodyAdded(const core::World& world, core::BodyId id) {
       frame_id = BodyFrameId(tf_prefix_, def.site);
     }
     const core::SensorKey key{def.seed, index, k};
-    Sensor sensor{def,
-                  site,
-                  frame_id,
-                  StepsPerSample(world.options().dt_s, def.rate_hz),
-                  key,
-                  core::ImuErrors(def.imu, def.rate_hz, key),
-                  def.type == SensorType::kImu
-                      ? nh.advertise<sensor_msgs::Imu>(def.name, kSensorQueueSize)
-                      : nh.advertise<nav_msgs::Odometry>(def.name, kSensorQueueSize)};
+    const std::uint64_t steps_per_sample = StepsPerSample(world.options().dt_s, def.rate_hz);
+    Sensor sensor{
+        def, site, frame_id, steps_per_sample, key, core::ImuErrors(def.imu, def.rate_hz, key)};
     sensor.imu_errors.Start(world.step_count());
     body.sensors.push_back(std::move(sensor));
   }
@@ -157,17 +147,20 @@ void SiteSensors::Sample(const core::World& world, const ros::Time& stamp) {
     const core::StepRecord* record = world.last_step_record(index);
     if (record == nullptr) continue;  // no step since its start, a reset or a set state
     const SensorSample sample{world, index, record->wrench, step, stamp};
-    for (Sensor& sensor : body.sensors) {
+    const BodyTopics::Topics* topics = topics_.at(body.id);  // nullptr: not yet advertised
+    for (std::size_t k = 0; k < body.sensors.size(); ++k) {
+      Sensor& sensor = body.sensors[k];
       if (step % sensor.steps_per_sample != 0) continue;
+      const bool heard = topics != nullptr && topics->sensors[k].wanted();
       if (sensor.def.type == SensorType::kImu) {
-        // The error advances even with no subscriber.
+        // The error advances whether or not anyone hears the sample.
         const core::ImuError error = sensor.imu_errors.Sample(step);
-        if (sensor.publisher.getNumSubscribers() == 0) continue;
-        sensor.publisher.publish(ToSiteImuMsg(sample, sensor.site, error, sensor.def.imu,
-                                              sensor.def.rate_hz, sensor.frame_id));
-      } else if (sensor.publisher.getNumSubscribers() > 0) {
-        sensor.publisher.publish(ToSiteOdometryMsg(sample, sensor.site, sensor.def.odometry,
-                                                   sensor.key, world_frame_, sensor.frame_id));
+        if (!heard) continue;
+        topics->sensors[k].publisher.publish(ToSiteImuMsg(
+            sample, sensor.site, error, sensor.def.imu, sensor.def.rate_hz, sensor.frame_id));
+      } else if (heard) {
+        topics->sensors[k].publisher.publish(ToSiteOdometryMsg(
+            sample, sensor.site, sensor.def.odometry, sensor.key, world_frame_, sensor.frame_id));
       }
     }
   }

@@ -134,9 +134,12 @@ void StatePublisher::OnBodyAdded(const core::World& world, core::BodyId id) {
   if (const std::vector<core::ThrusterDef>* thrusters = world.actuators().thrusters(id)) {
     for (const core::ThrusterDef& thruster : *thrusters) actuator_names.push_back(thruster.name);
   }
+  std::vector<BodyTopics::SensorTopic> sensor_topics;
+  for (const SiteSensorDef& sensor : names.sensors)
+    sensor_topics.push_back({sensor.name, sensor.type});
   body_topics_.Add(id, name, graph_.TopicNamespace(name),
                    names.own_joint_states ? std::make_optional(names.held_joints) : std::nullopt,
-                   std::move(actuator_names));
+                   std::move(actuator_names), std::move(sensor_topics));
   joint_states_.OnBodyAdded(id, names.held_joints);
 }
 
@@ -256,6 +259,7 @@ void StatePublisher::SendHeldBodyOutput(core::BodyId id, BodyTopics::Output outp
     }
     case BodyTopics::Output::kImu:
     case BodyTopics::Output::kAppliedWrench:
+    case BodyTopics::Output::kSensor:
       return;  // each needs the step that reached the state: none reached t_0
   }
 }

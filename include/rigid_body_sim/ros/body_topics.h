@@ -1,12 +1,11 @@
 // Each body's own topics (doc/node.md, "Topics and services"): the
 // publishers (a URDF body with a namespace has its own joint_states, a body
-// with actuators its actuator_states) and the subscriptions (wrench, and
-// actuators for a body with actuators) in its topic namespace (~<body>
-// unless the body names one), advertised and shut down on a thread of their
-// own. Each is a call to the master of a few milliseconds, so 10,000 bodies'
-// topics would hold the first step back by minutes, and a spawn or delete
-// would make steps late: the stepping thread only queues the work and uses a
-// body's topics once they exist.
+// with actuators its actuator_states, a body with sensors one per sensor) and
+// the subscriptions (wrench, and actuators for a body with actuators) in its
+// topic namespace (~<body> unless the body names one), advertised and shut
+// down on a thread of their own. Each is a call to the master of a few milliseconds, so 10,000
+// bodies' topics would hold the first step back by minutes, and a spawn or delete would make steps
+// late: the stepping thread only queues the work and uses a body's topics once they exist.
 #pragma once
 
 #include <atomic>
@@ -26,6 +25,7 @@
 #include <ros/ros.h>
 
 #include "rigid_body_sim/core/body_id.h"
+#include "rigid_body_sim/ros/scene_sensors.h"
 
 namespace rigid_body_sim {
 
@@ -42,7 +42,21 @@ struct CountedPublisher {
 class BodyTopics {
  public:
   // A body's outputs.
-  enum class Output { kPose, kTwist, kOdom, kImu, kAppliedWrench, kJointStates, kActuatorStates };
+  enum class Output {
+    kPose,
+    kTwist,
+    kOdom,
+    kImu,
+    kAppliedWrench,
+    kJointStates,
+    kActuatorStates,
+    kSensor
+  };
+  // A sensor's topic: its name in the body's namespace and what it carries.
+  struct SensorTopic {
+    std::string name;
+    SensorType type;
+  };
   // One body's topics; read only once `advertised` is set.
   struct Topics {
     core::BodyId id;
@@ -61,6 +75,9 @@ class BodyTopics {
     // exist only for a body that has some.
     std::vector<std::string> actuator_names;
     CountedPublisher actuator_states;
+    // The body's sensors' topics and their publishers, in its `sensors` order.
+    std::vector<SensorTopic> sensor_topics;
+    std::vector<CountedPublisher> sensors;
     ros::Subscriber wrench;
     ros::Subscriber actuators;
     std::atomic<bool> advertised{false};
@@ -76,9 +93,9 @@ class BodyTopics {
   using ConnectCallback = std::function<void(core::BodyId id, Output output,
                                              const ros::SingleSubscriberPublisher& subscriber)>;
 
-  // With `enabled` false no per-body topic is ever advertised. The topics
-  // take `private_nh`'s callback queue.
-  BodyTopics(const ros::NodeHandle& private_nh, bool enabled, WrenchCallback on_wrench,
+  // With `outputs` false a body's topics are only its sensors' (the node's
+  // per_body_topics). The topics take `private_nh`'s callback queue.
+  BodyTopics(const ros::NodeHandle& private_nh, bool outputs, WrenchCallback on_wrench,
              ActuatorCallback on_actuators, ConnectCallback on_connect);
   // Stops the advertising thread; topics not yet advertised never are.
   ~BodyTopics();
@@ -87,10 +104,12 @@ class BodyTopics {
 
   // A new body named `body` with its topics in `topic_namespace` (resolved),
   // joint_states among them when it has `joint_names`, actuators and
-  // actuator_states when it has `actuator_names`; they appear shortly.
+  // actuator_states when it has `actuator_names`, one per sensor of
+  // `sensor_topics`; they appear shortly.
   void Add(core::BodyId id, const std::string& body, const std::string& topic_namespace,
            std::optional<std::vector<std::string>> joint_names = std::nullopt,
-           std::vector<std::string> actuator_names = {});
+           std::vector<std::string> actuator_names = {},
+           std::vector<SensorTopic> sensor_topics = {});
   // The body goes now; its topics are shut down shortly.
   void Remove(core::BodyId id);
 
@@ -103,7 +122,7 @@ class BodyTopics {
   // Subscribers to any body's imu or applied_wrench, which need the world to
   // record the step before a publish cycle.
   int step_record_subscribers() const { return step_record_subscribers_; }
-  // How many bodies' topics are advertised (diagnostics; start-up progress).
+  // How many bodies' outputs are advertised (diagnostics; start-up progress).
   std::size_t advertised_count() const { return advertised_.load(std::memory_order_relaxed); }
   std::size_t size() const { return body_count_; }
 
@@ -114,10 +133,13 @@ class BodyTopics {
   };
   void Work();
   void Advertise(const std::shared_ptr<Topics>& topics);
+  void AdvertiseOutputs(ros::NodeHandle& nh, const std::shared_ptr<Topics>& topics);
   void Push(Task task);
+  // Whether `topics` has anything to advertise.
+  bool HasTopics(const Topics& topics) const { return outputs_ || !topics.sensor_topics.empty(); }
 
   const ros::NodeHandle private_nh_;
-  const bool enabled_;
+  const bool outputs_;
   const WrenchCallback on_wrench_;
   const ActuatorCallback on_actuators_;
   const ConnectCallback on_connect_;

@@ -45,8 +45,11 @@ struct NodeStatus {
   // StateHashWorker: the latest cycle hashed, if any.
   std::optional<StateHashWorker::Result> state_hash;
 
-  // InputRecorder: why ~record stopped, once a write failed.
+  // InputRecorder: why ~record stopped, once a write failed, or what it
+  // dropped while its queue was full.
   std::optional<std::string> record_error;
+  // With ~record only: the inputs and cycles dropped while its queue was full.
+  std::optional<std::uint64_t> record_dropped;
 };
 
 }  // namespace rigid_body_sim

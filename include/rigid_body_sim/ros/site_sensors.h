@@ -1,8 +1,9 @@
 // The bodies' `sensors` (doc/node.md, "Sensors"): each IMU and motion-capture
 // odometry sampled on its own lattice of steps, from the stepping thread
 // right after the step that reaches its sample, and published on
-// <body namespace>/<name>. Every sensor samples whether or not anyone
-// subscribes, so its errors depend on the steps alone.
+// <body namespace>/<name> once BodyTopics has advertised it. Every sensor
+// samples whether or not anyone subscribes, so its errors depend on the steps
+// alone.
 #pragma once
 
 #include <cstdint>
@@ -18,6 +19,7 @@
 #include "rigid_body_sim/core/load.h"
 #include "rigid_body_sim/core/world.h"
 #include "rigid_body_sim/ros/body_graph_table.h"
+#include "rigid_body_sim/ros/body_topics.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/scene_sensors.h"
 
@@ -51,10 +53,11 @@ nav_msgs::Odometry ToSiteOdometryMsg(const SensorSample& sample, const core::Sit
 
 class SiteSensors : public core::BodyListener {
  public:
-  // Takes the sensors of `world`'s bodies from `graph`, which must outlive
-  // this object, and follows the bodies added and removed later.
-  SiteSensors(const ros::NodeHandle& private_nh, const NodeSettings& settings,
-              const core::World& world, const BodyGraphTable& graph);
+  // Takes the sensors of `world`'s bodies from `graph` and publishes them on
+  // the publishers of `topics` (each body's `sensors`, in its order); both
+  // must outlive this object. Follows the bodies added and removed later.
+  SiteSensors(const NodeSettings& settings, const core::World& world, const BodyGraphTable& graph,
+              const BodyTopics& topics);
 
   void OnBodyAdded(const core::World& world, core::BodyId id) override;
   void OnBodyRemoved(const core::World& world, core::BodyId id) override;
@@ -76,7 +79,6 @@ class SiteSensors : public core::BodyListener {
     std::uint64_t steps_per_sample;
     core::SensorKey key;
     core::ImuErrors imu_errors;  // kImu
-    ros::Publisher publisher;
   };
 
   struct BodySensors {
@@ -84,10 +86,10 @@ class SiteSensors : public core::BodyListener {
     std::vector<Sensor> sensors;
   };
 
-  const ros::NodeHandle private_nh_;  // topics take its callback queue
   const std::string world_frame_;
   const std::string tf_prefix_;
   const BodyGraphTable& graph_;
+  const BodyTopics& topics_;
   std::vector<BodySensors> bodies_;  // the bodies with sensors, in the order they came
 };
 
