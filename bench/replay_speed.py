@@ -94,11 +94,12 @@ def replay_once(args, workspace, bag):
     return float(found.group(2)), wall, int(found.group(1))
 
 
-def free_node_speed(procs, args, diag, log_dir):
-    """Simulated seconds per wall second of each consecutive pair of reports over the window."""
-    proc = launch(procs, args, log_dir, "free", ["controller:=false", "real_time_factor:=0"], cpu=args.node_cpu)
+def node_speed(procs, args, diag, log_dir, label, extra, cpu=None):
+    """Simulated seconds per wall second of each consecutive pair of reports over the window, of
+    launch/quadrotor.launch with `extra` arguments."""
+    proc = launch(procs, args, log_dir, label, extra, cpu=cpu)
     if diag.wait_next(60, lambda: proc.poll() is None) is None:
-        sys.exit("the node without controller did not report")
+        sys.exit("%s: the node did not report" % label)
     diag.wait_next(5)  # past the start-up
     reports = []
     deadline = time.monotonic() + args.window
@@ -110,7 +111,7 @@ def free_node_speed(procs, args, diag, log_dir):
     procs.stop(proc, grace_s=20.0)
     speeds = [(b[1]["sim_time_s"] - a[1]["sim_time_s"]) / (b[0] - a[0]) for a, b in zip(reports, reports[1:])]
     if not speeds:
-        sys.exit("the node without controller gave no window")
+        sys.exit("%s: the node gave no window" % label)
     return speeds
 
 
@@ -137,7 +138,8 @@ def main():
             print("replay %d: %.3f s inside, %.3f s the command, %d hashes matched" % ((i + 1,) + replays[-1]),
                   flush=True)
         diag.clear()
-        speeds = free_node_speed(procs, args, diag, log_dir)
+        speeds = node_speed(procs, args, diag, log_dir, "free", ["controller:=false", "real_time_factor:=0"],
+                            cpu=args.node_cpu)
         print("node without controller: %s simulated s per wall s" % ", ".join("%.1f" % s for s in speeds),
               flush=True)
     finally:
