@@ -18,6 +18,7 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include "rbs_fixture.h"
+#include "rigid_body_sim/ros/run_flag.h"
 #include "rigid_body_sim/ros/scene_params.h"
 #include "rigid_body_sim/ros/simulation_node.h"
 
@@ -31,7 +32,8 @@ TEST(ClockOrder, ClockBeforeEveryOutputOfItsStamp) {
   // The node steps on its own thread and serves the global queue; the test
   // reads a queue of its own in one thread, in the order the messages came.
   ros::NodeHandle private_nh("~");
-  rigid_body_sim::SimulationNode node(private_nh, rigid_body_sim::LoadScene(private_nh));
+  const rigid_body_sim::RunFlag run_flag;  // runs until ros::shutdown() below
+  rigid_body_sim::SimulationNode node(private_nh, rigid_body_sim::LoadScene(private_nh), &run_flag);
   std::thread loop([&node] { node.Run(); });
   ros::CallbackQueue queue;
   ros::NodeHandle nh;
