@@ -13,7 +13,7 @@ import subprocess
 import time
 
 PREFIX = 'rbs_mh'
-PREFIX_LEN = 24  # every host's address is on one /24
+SUBNET_BITS = 24  # every host's address is on one /24
 
 
 class IpError(RuntimeError):
@@ -36,7 +36,10 @@ def _kill_all_in(namespace, timeout=5.0):
     """SIGKILLs every process in `namespace` and waits for them to be gone."""
     deadline = time.monotonic() + timeout
     while True:
-        pids = [int(p) for p in _ip('netns', 'pids', namespace).split()]
+        try:
+            pids = [int(p) for p in _ip('netns', 'pids', namespace).split()]
+        except IpError:
+            return  # no such namespace
         if not pids or time.monotonic() >= deadline:
             return
         for pid in pids:
@@ -101,9 +104,13 @@ class Network(object):
         self._switch = self._tag + 'switch'
         self.hosts = {}  # host name -> its address
         self._namespaces = [self._switch]
-        _ip('netns', 'add', self._switch)
-        _ip('-n', self._switch, 'link', 'add', 'name', 'br0', 'type', 'bridge')
-        _ip('-n', self._switch, 'link', 'set', 'dev', 'br0', 'up')
+        try:
+            _ip('netns', 'add', self._switch)
+            _ip('-n', self._switch, 'link', 'add', 'name', 'br0', 'type', 'bridge')
+            _ip('-n', self._switch, 'link', 'set', 'dev', 'br0', 'up')
+        except IpError:
+            self.remove()
+            raise
 
     def namespace(self, host):
         return self._tag + host
@@ -117,7 +124,7 @@ class Network(object):
         _ip('-n', self._switch, 'link', 'add', 'name', host, 'type', 'veth',
             'peer', 'name', 'eth0', 'netns', namespace)
         _ip('-n', self._switch, 'link', 'set', 'dev', host, 'master', 'br0', 'up')
-        _ip('-n', namespace, 'address', 'add', '%s/%d' % (address, PREFIX_LEN), 'dev', 'eth0')
+        _ip('-n', namespace, 'address', 'add', '%s/%d' % (address, SUBNET_BITS), 'dev', 'eth0')
         _ip('-n', namespace, 'link', 'set', 'dev', 'eth0', 'up')
         _ip('-n', namespace, 'link', 'set', 'dev', 'lo', 'up')
         self.hosts[host] = address
