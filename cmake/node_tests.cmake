@@ -61,6 +61,8 @@ add_rostest(test/ros/quadrotor.test DEPENDENCIES rigid_body_sim_node quadrotor_c
   rigid_body_sim_nodelets rigid_body_sim_example_nodelets)
 add_rostest(test/ros/record_replay.test DEPENDENCIES rigid_body_sim_node quadrotor_controller replay)
 add_rostest(test/ros/sharded.test DEPENDENCIES rigid_body_sim_node)
+# The shards on hosts of their own: network namespaces the test makes (as root).
+add_rostest(test/ros/multi_host/multi_host.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/hostile_input.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/client.test DEPENDENCIES rigid_body_sim_node)
 add_rostest(test/ros/empty_world.test DEPENDENCIES rigid_body_sim_node)

@@ -5,6 +5,7 @@
 set -euo pipefail
 packages=(
   build-essential cmake clang-format clang-tidy pyflakes3 shellcheck catkin-lint catkin python3-catkin-pkg python3-rospkg
+  iproute2
   ros-core-dev libroscpp-dev librostest-dev python3-rostest
   ros-message-generation ros-message-runtime
   libtf2-ros-dev libtf2-eigen-dev libtf2-msgs-dev libgeometry-msgs-dev
