@@ -10,6 +10,7 @@
 //   α = R I⁻¹ Rᵀ (τ − ω × L),  r = R r̄,  R_WS = R R_BS,
 // and its exact motion capture the site's pose and twist. "resting" (no
 // gravity, at rest) carries noisy sensors whose samples are their errors.
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <iomanip>
@@ -305,6 +306,55 @@ TEST(Sensors, NoisySensorsHaveTheirStddevsCovariancesAndTurnOnBias) {
   ASSERT_TRUE(biased.WaitStamp(node.last_s, &after));
   EXPECT_NE(V(after.angular_velocity), bias);
   EXPECT_GT(V(after.angular_velocity).norm(), 0.0);
+}
+
+TEST(Sensors, BiasRandomWalksHaveTheAllanSlopeOfAWalk) {
+  // An hour of three IMUs at 10 Hz whose errors are bias random walks alone:
+  // σ_A²(τ) = q² τ / 3 on each axis, a slope of +1/2 in log-log. Averaged over
+  // the 18 axes (each over its own q²), from τ = 10 s to 100 s the measured
+  // slope within 0.1, and σ_A²(10 s) within 20 % of q² 10 s / 3, as the
+  // core's test of the error model over 16 walks of an hour.
+  Node& node = NodeA();
+  ASSERT_TRUE(node.sim.EnsureConnected());
+  ros::NodeHandle nh;
+  std::array<Recorder<sensor_msgs::Imu>, 3> walks;
+  for (std::size_t k = 0; k < walks.size(); ++k) {
+    walks[k].Start(nh, node.sim.Name("resting/imu_walk_" + std::to_string(k)));
+  }
+  ASSERT_TRUE(WaitFor(
+      [&] {
+        return std::all_of(walks.begin(), walks.end(),
+                           [](const auto& walk) { return walk.NumPublishers() > 0; });
+      },
+      rbs_test::kStartupTimeout));
+  SleepWall(rbs_test::kSettle);
+  // 360,000 steps at 100 Hz, 500 per call (each sensor's queue holds 100):
+  // 36,000 samples of each.
+  constexpr int kCalls = 720;
+  constexpr std::size_t kSamples = kCalls * 50;
+  for (int call = 0; call < kCalls; ++call) ASSERT_TRUE(node.Step(500));
+  double variance_10 = 0.0, variance_100 = 0.0;
+  for (const Recorder<sensor_msgs::Imu>& walk : walks) {
+    ASSERT_TRUE(walk.WaitCount(kSamples));
+    std::array<std::vector<double>, 6> axes;
+    for (const sensor_msgs::Imu& msg : walk.Snapshot()) {
+      const double values[6] = {msg.angular_velocity.x,    msg.angular_velocity.y,
+                                msg.angular_velocity.z,    msg.linear_acceleration.x,
+                                msg.linear_acceleration.y, msg.linear_acceleration.z};
+      for (std::size_t axis = 0; axis < 6; ++axis) axes[axis].push_back(values[axis]);
+    }
+    for (std::size_t axis = 0; axis < 6; ++axis) {
+      const double q = axis < 3 ? 1.0e-4 : 1.0e-3;
+      ASSERT_EQ(axes[axis].size(), kSamples);
+      variance_10 += AllanVariance(axes[axis], 100) / (q * q) / 18.0;
+      variance_100 += AllanVariance(axes[axis], 1000) / (q * q) / 18.0;
+    }
+  }
+  const double slope = 0.5 * std::log10(variance_100 / variance_10);
+  EXPECT_NEAR(slope, 0.5, 0.1);
+  EXPECT_NEAR(variance_10 / (10.0 / 3.0), 1.0, 0.2);
+  RecordProperty("walk_allan_slope", Scientific(slope));
+  RecordProperty("walk_allan_10s_ratio", Scientific(variance_10 / (10.0 / 3.0)));
 }
 
 TEST(Sensors, ANodeSubscribedLateRepeatsTheSamplesBitForBit) {
