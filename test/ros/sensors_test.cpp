@@ -125,6 +125,10 @@ Node& NodeB() {
   static Node node("/sensors_b");
   return node;
 }
+Node& NodeC() {
+  static Node node("/sensors_c");
+  return node;
+}
 
 // The white-noise samples of "resting"'s imu_white on node A, from the
 // statistics test, by step.
@@ -379,6 +383,33 @@ TEST(Sensors, ANodeSubscribedLateRepeatsTheSamplesBitForBit) {
     ASSERT_NE(found, WhiteSamplesA().end()) << "step " << step;
     EXPECT_EQ(V(msg.angular_velocity), V(found->second.angular_velocity)) << "step " << step;
     EXPECT_EQ(V(msg.linear_acceleration), V(found->second.linear_acceleration)) << "step " << step;
+    ++compared;
+  }
+  EXPECT_EQ(compared, 100);
+}
+
+TEST(Sensors, AnotherSeedDiffersAtEverySample) {
+  // Node C's imu_white differs from node A's in its seed alone: every
+  // sample from step 200 to 400 differs from node A's at the same step.
+  ASSERT_FALSE(WhiteSamplesA().empty()) << "needs the statistics test's samples";
+  Node& node = NodeC();
+  ASSERT_TRUE(node.sim.Connect());
+  for (int call = 0; call < 4; ++call) ASSERT_TRUE(node.Step(50));
+  ros::NodeHandle nh;
+  Recorder<sensor_msgs::Imu> white;
+  white.Start(nh, node.sim.Name("resting/imu_white"));
+  ASSERT_TRUE(WaitFor([&] { return white.NumPublishers() > 0; }, rbs_test::kStartupTimeout));
+  SleepWall(rbs_test::kSettle);
+  for (int call = 0; call < 4; ++call) ASSERT_TRUE(node.Step(50));
+  ASSERT_TRUE(white.WaitCount(100));
+  int compared = 0;
+  for (const sensor_msgs::Imu& msg : white.Snapshot()) {
+    const long step = node.StepOf(msg.header.stamp);
+    ASSERT_GT(step, 200);
+    const auto found = WhiteSamplesA().find(step);
+    ASSERT_NE(found, WhiteSamplesA().end()) << "step " << step;
+    EXPECT_NE(V(msg.angular_velocity), V(found->second.angular_velocity)) << "step " << step;
+    EXPECT_NE(V(msg.linear_acceleration), V(found->second.linear_acceleration)) << "step " << step;
     ++compared;
   }
   EXPECT_EQ(compared, 100);
