@@ -17,7 +17,8 @@
 #     default scene's four bodies and a state hash;
 #   - roslaunch rigid_body_sim quadrotor.launch: the URDF quadrotor, with
 #     robot_state_publisher and the installed controller in lockstep, climbs
-#     past 0.5 m.
+#     past 0.5 m; the same with in_process:=true, node and controller loaded
+#     as nodelets from the prefix's libraries into one manager.
 # Every wait is bounded and every process started is stopped on exit. The
 # first failure prints one "install_space_test: FAIL: ..." line (then the
 # log it concerns) and exits 1.
@@ -163,10 +164,9 @@ sim.resume()
 EOF
   stop "$single"
 
-  # The quadrotor example, its controller and URDF from the install space.
-  launch quadrotor rigid_body_sim quadrotor.launch
-  quadrotor=$started
-  timeout -k 5 40 /usr/bin/python3 > "$tmp/climb.log" 2>&1 - <<'EOF' || fail "quadrotor.launch: base_link did not climb past 0.5 m" "$tmp/quadrotor.log"
+  # Waits (at most 30 s) for base_link to climb past 0.5 m; the log $1 on failure.
+  wait_climb() {
+    timeout -k 5 40 /usr/bin/python3 > "$tmp/climb.log" 2>&1 - <<'EOF' || fail "quadrotor.launch: base_link did not climb past 0.5 m" "$1"
 import threading
 import rospy
 from nav_msgs.msg import Odometry
@@ -176,8 +176,26 @@ rospy.Subscriber('/rigid_body_sim/base_link/odom', Odometry,
                  lambda odom: odom.pose.pose.position.z > 0.5 and climbed.set())
 assert climbed.wait(30.0), 'no odometry of base_link above 0.5 m within 30 s'
 EOF
+  }
+
+  # The quadrotor example, its controller and URDF from the install space.
+  launch quadrotor rigid_body_sim quadrotor.launch
+  quadrotor=$started
+  wait_climb "$tmp/quadrotor.log"
   node_pids+=("$(node_pid /rigid_body_sim)")
   stop "$quadrotor"
+
+  # The same as nodelets of one manager, their libraries the prefix's.
+  launch in_process rigid_body_sim quadrotor.launch in_process:=true
+  in_process=$started
+  wait_climb "$tmp/in_process.log"
+  manager_pid="$(node_pid /rigid_body_sim_manager)"
+  node_pids+=("$manager_pid")
+  for library in librigid_body_sim_nodelets.so librigid_body_sim_example_nodelets.so; do
+    grep -q " $prefix/lib/$library\$" "/proc/$manager_pid/maps" \
+      || fail "the nodelet manager did not load $prefix/lib/$library" "$tmp/in_process.log"
+  done
+  stop "$in_process"
 
   # Shards, pinned (default) and not.
   cores=$(nproc --all)
@@ -228,4 +246,4 @@ installing=1
   > "$tmp/install.log" 2>&1 || fail "catkin_make install -DCMAKE_INSTALL_PREFIX=$prefix" "$tmp/install.log"
 # It prints its own FAIL line.
 env -i PATH=/usr/bin:/bin HOME="$HOME" bash "$self" --in-install-space "$prefix" "$ws" "$tmp" || exit 1
-echo "install_space_test: OK in $(( $(date +%s) - start_time )) s (install space, node, Python client, quadrotor, 2 shards pinned and not)"
+echo "install_space_test: OK in $(( $(date +%s) - start_time )) s (install space, node, Python client, quadrotor as programs and as nodelets, 2 shards pinned and not)"
