@@ -119,7 +119,7 @@ const HeldLoads::PrincipalParts& HeldLoads::NewPrincipalParts(
   const std::uint64_t stamp = last_principal_stamp.fetch_add(1, std::memory_order_relaxed) + 1;
   // C = 0 without a world-axes force off the COM: no product to form.
   principal_parts_ = {
-      stamp, body_from_principal, r.transpose() * force_body_, r.transpose() * torque_body_,
+      body_from_principal, stamp, r.transpose() * force_body_, r.transpose() * torque_body_,
       has_force_moment_ ? Eigen::Matrix3d(force_moment_ * r) : Eigen::Matrix3d::Zero()};
   has_principal_parts_ = true;
   return principal_parts_;

@@ -78,8 +78,8 @@ class alignas(64) HeldLoads final : public Load {
     // Unique to this computation among all of the process's: equal stamps
     // mean the same loads (every part, the damping too) in the same frame P,
     // so a kernel that kept a copy of them may skip copying them again.
-    std::uint64_t stamp;
     Eigen::Quaterniond body_from_principal;
+    std::uint64_t stamp;
     Eigen::Vector3d force_body;    // R_BPᵀ F_B
     Eigen::Vector3d torque_body;   // R_BPᵀ τ_B
     Eigen::Matrix3d force_moment;  // C R_BP
@@ -117,7 +117,9 @@ class alignas(64) HeldLoads final : public Load {
   // store keeps one HeldLoads per body in one array, and the step streams
   // through it. A lane that keeps its body's parts (casimir_loaded_lanes.h)
   // reads the flags, the bound, the stamp and the frame, all in the first two
-  // cache lines; one that copies them reads on to the damping.
+  // cache lines; one that copies them reads on to the damping, the end of the
+  // fourth line: the frame before the stamp leaves PrincipalParts no padding,
+  // and the hot fields (after the vtable pointer) fill four lines exactly.
   bool has_torque_ = false;
   bool has_body_axes_ = false;
   bool has_force_moment_ = false;
