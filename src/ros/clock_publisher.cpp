@@ -1,6 +1,7 @@
 #include "rigid_body_sim/ros/clock_publisher.h"
 
 #include <rosgraph_msgs/Clock.h>
+#include <boost/make_shared.hpp>
 
 #include "rigid_body_sim/ros/node_handles.h"
 
@@ -34,7 +35,10 @@ ClockPublisher::ClockPublisher(const ros::NodeHandle& private_nh, const NodeSett
 
 void ClockPublisher::Publish(const ros::Time& stamp) {
   if (!enabled_ || (last_sent_ && stamp <= *last_sent_)) return;
-  clock_.publish(ClockMsg(stamp));
+  // As a shared pointer, as ~bodies: a subscriber in the same process takes
+  // both at once, on this thread, in the order they are sent; a serialised
+  // /clock would reach it later, from roscpp's network thread.
+  clock_.publish(boost::make_shared<rosgraph_msgs::Clock>(ClockMsg(stamp)));
   last_sent_ = stamp;
 }
 
