@@ -292,17 +292,31 @@ def integrator_names():
     return names
 
 
-def run_tool(args, timeout=60.0):
-    proc = subprocess.run(args, stdout=subprocess.PIPE, stderr=subprocess.PIPE, timeout=timeout)
-    return (proc.returncode, proc.stdout.decode(errors='replace'),
-            proc.stderr.decode(errors='replace'))
+def load_launch(files, argv, args_only=False):
+    """(loader, error) of roslaunch's own load of a launch file, as `roslaunch --nodes FILES
+    ARGV` (or, with args_only, `roslaunch --ros-args FILES`) does it, in this process: the
+    files resolve to exactly one path each and every substitution with these arguments
+    (name:=value) resolves; error is None, or what roslaunch would print."""
+    import roslaunch.config
+    import roslaunch.core
+    import roslaunch.rlutil
+    import roslaunch.xmlloader
+    loader = roslaunch.xmlloader.XmlLoader(resolve_anon=False, args_only=args_only)
+    loader.ignore_unset_args = False
+    try:
+        for path in roslaunch.rlutil.resolve_launch_arguments(files):
+            loader.load(path, roslaunch.config.ROSLaunchConfig(), argv=['roslaunch'] + argv,
+                        verbose=False)
+    except roslaunch.core.RLException as e:
+        return loader, str(e)
+    return loader, None
 
 
 def declared_launch_args(files):
-    rc, out, err = run_tool(['roslaunch', '--ros-args'] + files)
-    if rc != 0:
-        return None, out + err
-    return set(re.findall(r'(?m)^  ([^\s:(]+)(?: \(default |: )', out)), out
+    loader, error = load_launch(files, [], args_only=True)
+    if error is not None:
+        return None, error
+    return set(loader.root_context.resolve_dict.get('arg_doc', {})), None
 
 
 def positional(args):
@@ -695,13 +709,13 @@ class ReadmeExamples(unittest.TestCase):
                     self.assertTrue(os.path.isfile(files[0]), '%s: no file %s'
                                     % (where, files[0]))
             argv = ['%s:=%s' % a for a in launch_args]
-            rc, out, err = run_tool(['roslaunch', '--nodes'] + files + argv)
-            self.assertEqual(rc, 0, '%s: `roslaunch --nodes %s` failed (exit %d):\n%s%s'
-                             % (where, ' '.join(files + argv), rc, out[-3000:], err[-3000:]))
+            _, error = load_launch(files, argv)
+            self.assertIsNone(error, '%s: roslaunch cannot load %s:\n%s'
+                              % (where, ' '.join(files + argv), error))
             if launch_args:
                 declared, report = declared_launch_args(files)
-                self.assertIsNotNone(declared, '%s: `roslaunch --ros-args` failed:\n%s'
-                                     % (where, report))
+                self.assertIsNotNone(declared, '%s: roslaunch cannot read the arguments of %s:\n%s'
+                                     % (where, ' '.join(files), report))
                 undeclared = [n for n, _ in launch_args if n not in declared]
                 self.assertFalse(undeclared, '%s: argument(s) %s not declared by the launch file '
                                  '(it declares %s)' % (where, ', '.join(undeclared),
