@@ -1,7 +1,8 @@
-"""Report helpers the bench scripts share: numbers and Markdown tables, and the commit and CPU a
-report names."""
+"""Report helpers the bench scripts share: numbers and Markdown tables, the commit and CPU a
+report names, and a report's header and writing."""
 
 import math
+import os
 import subprocess
 
 from node_harness import REPO
@@ -44,6 +45,11 @@ def has_uncommitted_changes():
         return False
 
 
+def commit_described():
+    """The checkout's short commit hash, marked when a tracked file differs from the commit."""
+    return git_head() + (" (with uncommitted changes)" if has_uncommitted_changes() else "")
+
+
 def cpu_model():
     """The CPU's model name from /proc/cpuinfo, or "unknown CPU"."""
     try:
@@ -54,3 +60,25 @@ def cpu_model():
     except OSError:
         pass
     return "unknown CPU"
+
+
+def report_header(title, script, bench_cpu, pinned=""):
+    """A report's first lines: its title and the script (bench/<script>), then the commit, the CPU and
+    its cores, what `pinned` says runs pinned where ("<what> pinned to core N, "), the core of the
+    script and the master, and the load average (1 min) at the end of the run."""
+    return ["# %s (`bench/%s`)" % (title, script), "",
+            "Commit %s, %s, %d cores; %sthis script and the master on core %d. Load average (1 min) at the "
+            "end: %.2f." % (commit_described(), cpu_model(), os.cpu_count(), pinned, bench_cpu,
+                            os.getloadavg()[0]), ""]
+
+
+def write_report(out_dir, name, lines):
+    """Writes the report's `lines` to <out_dir>/<name> and prints them and the path."""
+    report = "\n".join(lines)
+    os.makedirs(out_dir, exist_ok=True)
+    path = os.path.join(out_dir, name)
+    with open(path, "w") as f:
+        f.write(report + "\n")
+    print()
+    print(report)
+    print("written: %s" % path)

@@ -69,7 +69,7 @@ def main():
     args = parse_args()
     reexec_in_workspace(args.workspace, args.port)
     import rospy
-    from bench_report import cpu_model, git_head, has_uncommitted_changes
+    from bench_report import report_header, write_report
     os.sched_setaffinity(0, {args.bench_cpu})
     procs = Processes()
     log_dir = tempfile.mkdtemp(prefix="flight_lockstep_")
@@ -95,14 +95,11 @@ def main():
         procs.stop_all()
     common = sorted(set(hashes["tcp"]) & set(hashes["nodelet"]))
     differing = [step for step in common if hashes["tcp"][step] != hashes["nodelet"][step]]
-    commit = git_head() + (" (with uncommitted changes)" if has_uncommitted_changes() else "")
-    lines = ["# A minute of lockstep flight (`bench/flight_lockstep.py`)", "",
-             "Commit %s, %s, %d cores; this script and the master on core %d. Load average (1 min) at the "
-             "end: %.2f." % (commit, cpu_model(), os.cpu_count(), args.bench_cpu, os.getloadavg()[0]), "",
-             "launch/quadrotor.launch, rate 1000, publish_rate 1000 (1 kHz control), real_time_factor 0, "
-             "gusts of %g m/s (seed 3), no robot_state_publisher, use_sim_time false." % args.gust_stddev, "",
-             "| way | simulated s per wall s (median) | wall time of %g s of flight | windows |" % args.seconds,
-             "|---|---|---|---|"]
+    lines = report_header("A minute of lockstep flight", "flight_lockstep.py", args.bench_cpu)
+    lines += ["launch/quadrotor.launch, rate 1000, publish_rate 1000 (1 kHz control), real_time_factor 0, "
+              "gusts of %g m/s (seed 3), no robot_state_publisher, use_sim_time false." % args.gust_stddev, "",
+              "| way | simulated s per wall s (median) | wall time of %g s of flight | windows |" % args.seconds,
+              "|---|---|---|---|"]
     for name, _ in MODES:
         speed = statistics.median(speeds[name])
         lines.append("| %s | %.1f | %.3f s | %s |" % (name, speed, args.seconds / speed,
@@ -110,14 +107,7 @@ def main():
     lines += ["", "State hashes, recorded flights: %d cycles in both up to step %d, %d differing%s." % (
         len(common), last_step, len(differing),
         "" if not differing else " (the first at step %d)" % differing[0]), ""]
-    report = "\n".join(lines)
-    os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "flight_lockstep.md")
-    with open(path, "w") as f:
-        f.write(report + "\n")
-    print()
-    print(report)
-    print("written: %s" % path)
+    write_report(args.out, "flight_lockstep.md", lines)
 
 
 if __name__ == "__main__":

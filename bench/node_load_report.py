@@ -3,7 +3,7 @@ the columns of its CSV."""
 
 import os
 
-from bench_report import cpu_model, git_head, has_uncommitted_changes, md_table
+from bench_report import commit_described, cpu_model, md_table
 from node_load_push import PUSH_ENTRIES_PER_ARRAY, PUSH_FORCE_N
 from node_load_record import RECORD_BODIES, RECORD_PUBLISH_RATE_HZ, RECORD_RATE_HZ
 from node_load_run import NOISE_OVERRUNS_PER_S
@@ -54,15 +54,14 @@ def write_report(bench, results, quick, elapsed):
     record_rows = results.get("record", [])
     loads = [r["loadavg1"] for r in bench.rows if "loadavg1" in r]
     integrator = next((r.get("integrator") for r in bench.rows if r.get("integrator")), "")
-    commit = git_head() + (" (with uncommitted changes)" if has_uncommitted_changes() else "")
     md = ["# The node under load (`bench/node_load.py`%s)" % (" --quick" if quick else ""), ""]
     md.append("Commit %s, %s, %d cores; node pinned to core %d (`taskset`) with scheduling `%s`, this script "
               "and the master on core %d. Integrator: %s (the node's default). Scenes: N generated boxes, `resolution: 2` "
               "(8 particles each), all moving (idle bodies are skipped by the integrator). "
               "Load average (1 min) during the runs: %.2f to %.2f. Run time %.0f s."
-              % (commit, cpu_model(), os.cpu_count(), bench.args.node_cpu, bench.args.sched, bench.args.bench_cpu,
-                 integrator, min(loads) if loads else float("nan"), max(loads) if loads else float("nan"),
-                 elapsed))
+              % (commit_described(), cpu_model(), os.cpu_count(), bench.args.node_cpu, bench.args.sched,
+                 bench.args.bench_cpu, integrator, min(loads) if loads else float("nan"),
+                 max(loads) if loads else float("nan"), elapsed))
     md.append("")
     md.append("## Summary")
     md.append("")

@@ -119,7 +119,7 @@ def main():
     args = parse_args()
     workspace = reexec_in_workspace(args.workspace, args.port)
     import rospy
-    from bench_report import cpu_model, git_head, has_uncommitted_changes
+    from bench_report import report_header, write_report
     os.sched_setaffinity(0, {args.bench_cpu})
     procs = Processes()
     log_dir = tempfile.mkdtemp(prefix="replay_speed_")
@@ -147,32 +147,22 @@ def main():
     inside = statistics.median(r[0] for r in replays)
     command = statistics.median(r[1] for r in replays)
     speed = statistics.median(speeds)
-    commit = git_head() + (" (with uncommitted changes)" if has_uncommitted_changes() else "")
-    md = ["# Replay speed (`bench/replay_speed.py`)", "",
-          "Commit %s, %s, %d cores; replay and the node without controller pinned to core %d, this script and "
-          "the master on core %d. Load average (1 min) at the end: %.2f." % (
-              commit, cpu_model(), os.cpu_count(), args.node_cpu, args.bench_cpu, os.getloadavg()[0]), "",
-          "Recorded: launch/quadrotor.launch in lockstep with its controller, gusts of %g m/s (seed 3), "
-          "real_time_factor %g: %.2f s of simulated time, %d cycles, %d inputs, bag of %.1f MB."
-          % (args.gust_stddev, args.record_rtf, span_s, cycles, inputs, os.path.getsize(bag) / 1e6), "",
-          "| figure | median | runs |", "|---|---|---|",
-          "| replay, its own time (bag read, world rebuilt, every input and step, every hash) | %.3f s = %.4f of "
-          "real time (%.0fx) | %s |" % (inside, inside / span_s, span_s / inside,
-                                        ", ".join("%.3f" % r[0] for r in replays)),
-          "| replay, the whole command (process start-up and master too) | %.3f s = %.4f of real time (%.0fx) | %s |"
-          % (command, command / span_s, span_s / command, ", ".join("%.3f" % r[1] for r in replays)),
-          "| node, same scene, no controller, real_time_factor 0: simulated s per wall s | %.1f (%.2f s for the "
-          "flight, %.4f of real time) | %s |" % (speed, span_s / speed, 1.0 / speed,
-                                                 ", ".join("%.1f" % s for s in speeds)),
-          "| replay's own time / the node's time for the flight | %.2f | |" % (inside / (span_s / speed)), ""]
-    report = "\n".join(md)
-    os.makedirs(args.out, exist_ok=True)
-    path = os.path.join(args.out, "replay_speed.md")
-    with open(path, "w") as f:
-        f.write(report + "\n")
-    print()
-    print(report)
-    print("written: %s" % path)
+    md = report_header("Replay speed", "replay_speed.py", args.bench_cpu,
+                       pinned="replay and the node without controller pinned to core %d, " % args.node_cpu)
+    md += ["Recorded: launch/quadrotor.launch in lockstep with its controller, gusts of %g m/s (seed 3), "
+           "real_time_factor %g: %.2f s of simulated time, %d cycles, %d inputs, bag of %.1f MB."
+           % (args.gust_stddev, args.record_rtf, span_s, cycles, inputs, os.path.getsize(bag) / 1e6), "",
+           "| figure | median | runs |", "|---|---|---|",
+           "| replay, its own time (bag read, world rebuilt, every input and step, every hash) | %.3f s = %.4f of "
+           "real time (%.0fx) | %s |" % (inside, inside / span_s, span_s / inside,
+                                         ", ".join("%.3f" % r[0] for r in replays)),
+           "| replay, the whole command (process start-up and master too) | %.3f s = %.4f of real time (%.0fx) | %s |"
+           % (command, command / span_s, span_s / command, ", ".join("%.3f" % r[1] for r in replays)),
+           "| node, same scene, no controller, real_time_factor 0: simulated s per wall s | %.1f (%.2f s for the "
+           "flight, %.4f of real time) | %s |" % (speed, span_s / speed, 1.0 / speed,
+                                                  ", ".join("%.1f" % s for s in speeds)),
+           "| replay's own time / the node's time for the flight | %.2f | |" % (inside / (span_s / speed)), ""]
+    write_report(args.out, "replay_speed.md", md)
 
 
 if __name__ == "__main__":

@@ -51,7 +51,7 @@ class CppExamples(unittest.TestCase):
         with open(os.path.join(root, 'doc', 'testing.md')) as f:
             document = f.read()
         for example in ('hold_controller.h', 'hold_controller.cpp', 'hold_controller_main.cpp',
-                        'hold_controller_nodelet.cpp', 'step_client.cpp'):
+                        'hold_controller_nodelet.cpp', 'controller_nodelet.h', 'step_client.cpp'):
             with open(os.path.join(root, 'src', 'examples', example)) as f:
                 self.assertIn('```cpp\n' + f.read() + '```\n', document, example)
 

@@ -361,11 +361,17 @@ TEST(Sensors, BiasRandomWalksHaveTheAllanSlopeOfAWalk) {
   RecordProperty("walk_allan_10s_ratio", Scientific(variance_10 / (10.0 / 3.0)));
 }
 
-TEST(Sensors, ANodeSubscribedLateRepeatsTheSamplesBitForBit) {
-  // Node B runs 200 steps with no subscriber, then is heard for 200 more:
-  // its samples are node A's at the same steps, bit for bit.
+// A sample of a node's imu_white and node A's at the same step.
+struct WhitePair {
+  long step;
+  sensor_msgs::Imu sample;
+  sensor_msgs::Imu sample_a;
+};
+
+// Steps `node` 200 times with no subscriber to its imu_white, then 200 times
+// heard: each sample heard (steps 201 to 400) beside node A's, into `pairs`.
+void HearWhiteAfter200Steps(Node& node, std::vector<WhitePair>* pairs) {
   ASSERT_FALSE(WhiteSamplesA().empty()) << "needs the statistics test's samples";
-  Node& node = NodeB();
   ASSERT_TRUE(node.sim.Connect());
   for (int call = 0; call < 4; ++call) ASSERT_TRUE(node.Step(50));
   ros::NodeHandle nh;
@@ -375,44 +381,37 @@ TEST(Sensors, ANodeSubscribedLateRepeatsTheSamplesBitForBit) {
   SleepWall(rbs_test::kSettle);
   for (int call = 0; call < 4; ++call) ASSERT_TRUE(node.Step(50));
   ASSERT_TRUE(white.WaitCount(100));
-  int compared = 0;
   for (const sensor_msgs::Imu& msg : white.Snapshot()) {
     const long step = node.StepOf(msg.header.stamp);
     ASSERT_GT(step, 200);
     const auto found = WhiteSamplesA().find(step);
     ASSERT_NE(found, WhiteSamplesA().end()) << "step " << step;
-    EXPECT_EQ(V(msg.angular_velocity), V(found->second.angular_velocity)) << "step " << step;
-    EXPECT_EQ(V(msg.linear_acceleration), V(found->second.linear_acceleration)) << "step " << step;
-    ++compared;
+    pairs->push_back({step, msg, found->second});
   }
-  EXPECT_EQ(compared, 100);
+}
+
+TEST(Sensors, ANodeSubscribedLateRepeatsTheSamplesBitForBit) {
+  // Node B runs 200 steps with no subscriber, then is heard for 200 more:
+  // its samples are node A's at the same steps, bit for bit.
+  std::vector<WhitePair> pairs;
+  ASSERT_NO_FATAL_FAILURE(HearWhiteAfter200Steps(NodeB(), &pairs));
+  for (const auto& [step, sample, sample_a] : pairs) {
+    EXPECT_EQ(V(sample.angular_velocity), V(sample_a.angular_velocity)) << "step " << step;
+    EXPECT_EQ(V(sample.linear_acceleration), V(sample_a.linear_acceleration)) << "step " << step;
+  }
+  EXPECT_EQ(pairs.size(), 100u);
 }
 
 TEST(Sensors, AnotherSeedDiffersAtEverySample) {
   // Node C's imu_white differs from node A's in its seed alone: every
   // sample from step 200 to 400 differs from node A's at the same step.
-  ASSERT_FALSE(WhiteSamplesA().empty()) << "needs the statistics test's samples";
-  Node& node = NodeC();
-  ASSERT_TRUE(node.sim.Connect());
-  for (int call = 0; call < 4; ++call) ASSERT_TRUE(node.Step(50));
-  ros::NodeHandle nh;
-  Recorder<sensor_msgs::Imu> white;
-  white.Start(nh, node.sim.Name("resting/imu_white"));
-  ASSERT_TRUE(WaitFor([&] { return white.NumPublishers() > 0; }, rbs_test::kStartupTimeout));
-  SleepWall(rbs_test::kSettle);
-  for (int call = 0; call < 4; ++call) ASSERT_TRUE(node.Step(50));
-  ASSERT_TRUE(white.WaitCount(100));
-  int compared = 0;
-  for (const sensor_msgs::Imu& msg : white.Snapshot()) {
-    const long step = node.StepOf(msg.header.stamp);
-    ASSERT_GT(step, 200);
-    const auto found = WhiteSamplesA().find(step);
-    ASSERT_NE(found, WhiteSamplesA().end()) << "step " << step;
-    EXPECT_NE(V(msg.angular_velocity), V(found->second.angular_velocity)) << "step " << step;
-    EXPECT_NE(V(msg.linear_acceleration), V(found->second.linear_acceleration)) << "step " << step;
-    ++compared;
+  std::vector<WhitePair> pairs;
+  ASSERT_NO_FATAL_FAILURE(HearWhiteAfter200Steps(NodeC(), &pairs));
+  for (const auto& [step, sample, sample_a] : pairs) {
+    EXPECT_NE(V(sample.angular_velocity), V(sample_a.angular_velocity)) << "step " << step;
+    EXPECT_NE(V(sample.linear_acceleration), V(sample_a.linear_acceleration)) << "step " << step;
   }
-  EXPECT_EQ(compared, 100);
+  EXPECT_EQ(pairs.size(), 100u);
 }
 
 TEST(Sensors, ASpawnedBodysSensorsPublishAndAnOffLatticeRateIsRefused) {
