@@ -30,7 +30,8 @@ constexpr std::size_t kBodiesPerBlock = 1024;
 
 }  // namespace
 
-StepEngine::StepEngine(std::size_t threads) : team_(threads) {
+StepEngine::StepEngine(std::size_t threads, const StepSettings& settings)
+    : team_(threads), settings_(settings) {
   workspace_.shares.resize(threads);
   for (Share& share : workspace_.shares) {
     share.free_batch.reserve(kBatch);
@@ -41,13 +42,13 @@ StepEngine::StepEngine(std::size_t threads) : team_(threads) {
   }
 }
 
-StepCounts StepEngine::Step(BodyStore* bodies, const StepContext& context) {
+StepCounts StepEngine::Step(BodyStore* bodies, StepContext context) {
   hot_ = &bodies->hot();
   context_ = context;
   const bool has_drag = context.drag != nullptr;
   if (has_drag) PrepareDragFlows(*bodies);
   const std::size_t size = bodies->size();
-  if (context.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
+  if (settings_.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
   if (context.record) RecordStepStart(bodies);
   for (Share& share : workspace_.shares) {
     share.counts = StepCounts{};
@@ -96,7 +97,8 @@ void StepEngine::OnBodyRemoved(std::size_t index) {
   OnStatesWritten();  // the bodies after it moved down
 }
 
-void StepEngine::OnIntegratorChanged() {
+void StepEngine::OnIntegratorChanged(const Integrator& integrator) {
+  settings_.integrator = &integrator;
   workspace_.free_flows.clear();  // kept for exact_free alone
 }
 
@@ -121,8 +123,11 @@ inline void StepEngine::BatchDragged(std::size_t index, bool loaded, bool within
   batch.push_back(index);
   within_bound = within_bound && within_one_step_bound;
   if (batch.size() == kBatch) {
-    StepBatch(loaded ? &Integrator::StepLoaded : &Integrator::StepFree, &batch, within_bound,
-              &dragged.lane_cache, share);
+    if (loaded) {
+      StepBatch<&Integrator::StepLoaded>(&batch, within_bound, &dragged.lane_cache, share);
+    } else {
+      StepBatch<&Integrator::StepFree>(&batch, within_bound, &dragged.lane_cache, share);
+    }
     within_bound = true;
   }
 }
@@ -139,9 +144,9 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
                    (std::lower_bound(dragged.begin(), dragged.end(), begin) - dragged.begin());
     dragged_end = dragged.data() + dragged.size();
   }
-  const Integrator& integrator = *context_.integrator;
-  const double dt_s = context_.dt_s;
-  const std::uint32_t max_substeps = context_.max_substeps;
+  const Integrator& integrator = *settings_.integrator;
+  const double dt_s = settings_.dt_s;
+  const std::uint32_t max_substeps = settings_.max_substeps;
   // Whether every body in the free and the loaded batch is within PlanStep's
   // cheap bound (BodyBatch::within_one_step_bound).
   bool free_within_bound = true, loaded_within_bound = true;
@@ -172,16 +177,16 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
           share->loaded_batch.push_back(i);
           loaded_within_bound = loaded_within_bound && plan.within_one_step_bound;
           if (share->loaded_batch.size() == kBatch) {
-            StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound,
-                      &share->lane_cache, share);
+            StepBatch<&Integrator::StepLoaded>(&share->loaded_batch, loaded_within_bound,
+                                               &share->lane_cache, share);
             loaded_within_bound = true;
           }
         } else {
           share->free_batch.push_back(i);
           free_within_bound = free_within_bound && plan.within_one_step_bound;
           if (share->free_batch.size() == kBatch) {
-            StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound,
-                      &share->lane_cache, share);
+            StepBatch<&Integrator::StepFree>(&share->free_batch, free_within_bound,
+                                             &share->lane_cache, share);
             free_within_bound = true;
           }
         }
@@ -202,16 +207,16 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       }
     }
   }
-  StepBatch(&Integrator::StepFree, &share->free_batch, free_within_bound, &share->lane_cache,
-            share);
-  StepBatch(&Integrator::StepLoaded, &share->loaded_batch, loaded_within_bound, &share->lane_cache,
-            share);
+  StepBatch<&Integrator::StepFree>(&share->free_batch, free_within_bound, &share->lane_cache,
+                                   share);
+  StepBatch<&Integrator::StepLoaded>(&share->loaded_batch, loaded_within_bound, &share->lane_cache,
+                                     share);
   if constexpr (kWithDrag) {
     Share::DraggedBatches& dragged = share->dragged;
-    StepBatch(&Integrator::StepFree, &dragged.free_batch, dragged.free_within_bound,
-              &dragged.lane_cache, share);
-    StepBatch(&Integrator::StepLoaded, &dragged.loaded_batch, dragged.loaded_within_bound,
-              &dragged.lane_cache, share);
+    StepBatch<&Integrator::StepFree>(&dragged.free_batch, dragged.free_within_bound,
+                                     &dragged.lane_cache, share);
+    StepBatch<&Integrator::StepLoaded>(&dragged.loaded_batch, dragged.loaded_within_bound,
+                                       &dragged.lane_cache, share);
     dragged.free_within_bound = true;
     dragged.loaded_within_bound = true;
   }
@@ -220,14 +225,13 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
 
 void StepEngine::PrepareDragFlows(const BodyStore& bodies) {
   const std::vector<std::size_t>& dragged = *context_.drag->bodies;
-  if (drag_flows_.size() == dragged.size() && drag_flows_dt_s_ == context_.dt_s) return;
+  if (drag_flows_.size() == dragged.size()) return;
   drag_flows_.clear();
   drag_flows_.reserve(dragged.size());
   for (const std::size_t i : dragged) {
     drag_flows_.emplace_back(bodies.cold().properties[i].drag, bodies.hot().models[i],
-                             context_.dt_s / 2);
+                             settings_.dt_s / 2);
   }
-  drag_flows_dt_s_ = context_.dt_s;
 }
 
 void StepEngine::AdvanceDragged(std::size_t begin, std::size_t end) const {
@@ -242,8 +246,9 @@ void StepEngine::AdvanceDragged(std::size_t begin, std::size_t end) const {
   }
 }
 
-void StepEngine::StepBatch(BatchStep step, std::vector<std::size_t>* bodies,
-                           bool within_one_step_bound, LaneCache* cache, Share* share) {
+template <StepEngine::BatchStep kStep>
+void StepEngine::StepBatch(std::vector<std::size_t>* bodies, bool within_one_step_bound,
+                           LaneCache* cache, Share* share) {
   if (bodies->empty()) return;
   BodyBatch batch = Batch(*bodies, cache);
   // The scheme writes a failing body's fault straight into the store's
@@ -251,7 +256,7 @@ void StepEngine::StepBatch(BatchStep step, std::vector<std::size_t>* bodies,
   const std::vector<BodyFault>& faults = hot_->faults;
   batch.faults = hot_->faults.data();
   batch.within_one_step_bound = within_one_step_bound;
-  (context_.integrator->*step)(batch, context_.dt_s);
+  (settings_.integrator->*kStep)(batch, settings_.dt_s);
   for (const std::size_t index : *bodies) {
     if (faults[index] != BodyFault::kNone) ++share->counts.frozen;
   }
@@ -288,16 +293,16 @@ void StepEngine::StepSubstepBatch(Share::SubstepBatch* batch, Share* share) {
     StepAlone(index, batch->substeps, batch->loaded ? &hot_->loads[index] : nullptr, share);
   } else {
     const BodyBatch bodies = Batch(batch->bodies, &batch->lane_cache);
-    const double h = context_.dt_s / batch->substeps;
+    const double h = settings_.dt_s / batch->substeps;
     // Since the batch last stepped, its cache's states may have been put
     // back (CheckOrRestore) or written from outside, unknown to it.
     batch->lane_cache.ForgetStates();
     for (std::uint32_t k = 0; k < batch->substeps; ++k) {
       batch->lane_cache.StartStep();
       if (batch->loaded) {
-        context_.integrator->StepLoaded(bodies, h);
+        settings_.integrator->StepLoaded(bodies, h);
       } else {
-        context_.integrator->StepFree(bodies, h);
+        settings_.integrator->StepFree(bodies, h);
       }
     }
     for (std::size_t k = 0; k < batch->bodies.size(); ++k) {
@@ -313,8 +318,8 @@ void StepEngine::StepAlone(std::size_t index, std::uint32_t substeps, const Held
   const BodyModel& model = hot_->models[index];
   BodyState& state = hot_->states[index];
   const BodyState before = state;
-  const double h = context_.dt_s / substeps;
-  for (std::uint32_t k = 0; k < substeps; ++k) context_.integrator->Step(model, load, h, &state);
+  const double h = settings_.dt_s / substeps;
+  for (std::uint32_t k = 0; k < substeps; ++k) settings_.integrator->Step(model, load, h, &state);
   CheckOrRestore(index, before, share);
 }
 

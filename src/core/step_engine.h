@@ -1,8 +1,9 @@
 // How a World's step is carried out, private to the core: each body's plan
 // (step_policy.h), the batches handed to the scheme, the substep batches,
 // the blocks of bodies spread over a team of threads, the step records, and
-// the one fault path. The World hands it its bodies, their loads and the
-// step's settings for each step (StepContext); the scratch the schemes keep
+// the one fault path. The engine keeps the World's settings that hold from
+// step to step (StepSettings); the World hands it its bodies, their loads and
+// what is new in each step (StepContext); the scratch the schemes keep
 // from step to step lives in the engine's workspace, not in the World or the
 // store.
 //
@@ -43,11 +44,16 @@ struct StepDrag {
   Eigen::Vector3d wind_mps = Eigen::Vector3d::Zero();  // world axes
 };
 
-// The World's settings for one step.
-struct StepContext {
-  const Integrator* integrator = nullptr;
+// The World's settings that hold from step to step, kept by the engine so
+// that a step does not copy them.
+struct StepSettings {
+  const Integrator* integrator = nullptr;  // the World's (OnIntegratorChanged)
   double dt_s = 0.0;
   std::uint32_t max_substeps = 1;
+};
+
+// What is new in each step: small enough to pass in registers.
+struct StepContext {
   // Every body's HeldLoads is what it was in the last step (LaneCache::StartStep).
   bool loads_kept = false;
   // Fill every body's StepRecord in the store (World::RecordNextStep).
@@ -66,16 +72,16 @@ struct StepCounts {
 class StepEngine {
  public:
   // `threads` >= 1 step the bodies, the calling thread one of them.
-  explicit StepEngine(std::size_t threads);
+  StepEngine(std::size_t threads, const StepSettings& settings);
   StepEngine(const StepEngine&) = delete;
   StepEngine& operator=(const StepEngine&) = delete;
 
   // Advances every body of `bodies` that moves and is not frozen by
-  // context.dt_s under its summed loads (BodyHotColumns::loads where
+  // StepSettings::dt_s under its summed loads (BodyHotColumns::loads where
   // `loaded`), in the substeps its plan asks for; freezes a body whose state
   // would break a CheckState bound, or that needs more than max_substeps,
   // at its last good state. Returns when every thread is done.
-  StepCounts Step(BodyStore* bodies, const StepContext& context);
+  StepCounts Step(BodyStore* bodies, StepContext context);
 
   // What the workspace does when the bodies change between steps. A state
   // written outside Step (set, reset) or bodies moved to other indices: no
@@ -83,8 +89,8 @@ class StepEngine {
   void OnStatesWritten();
   // Body `index` is gone; the bodies after it moved down by one.
   void OnBodyRemoved(std::size_t index);
-  // The World steps with another scheme from the next step on.
-  void OnIntegratorChanged();
+  // The World steps with `integrator` from the next step on.
+  void OnIntegratorChanged(const Integrator& integrator);
   // A body with drag was added (a removal is OnBodyRemoved).
   void OnDraggedChanged() { drag_flows_.clear(); }
 
@@ -143,12 +149,15 @@ class StepEngine {
   template <bool kWithDrag>
   void StepBlock(std::size_t begin, std::size_t end, Share* share);
   using BatchStep = void (Integrator::*)(const BodyBatch& batch, double dt_s) const;
-  // Steps `bodies` by dt through `step` (StepFree or StepLoaded) with the
+  // Steps `bodies` by dt through `kStep` (StepFree or StepLoaded) with the
   // lanes' `cache`, which writes back only the states that pass their check
   // and reports the others; freezes those, and empties `bodies`.
-  // `within_one_step_bound`: as BodyBatch's.
-  void StepBatch(BatchStep step, std::vector<std::size_t>* bodies, bool within_one_step_bound,
-                 LaneCache* cache, Share* share);
+  // `within_one_step_bound`: as BodyBatch's. The step is a template
+  // argument, not a call argument: the call then fits in registers and
+  // dispatches straight through the vtable.
+  template <BatchStep kStep>
+  void StepBatch(std::vector<std::size_t>* bodies, bool within_one_step_bound, LaneCache* cache,
+                 Share* share);
   // Adds body `index` with drag, `loaded` or not, to its batch in
   // `share->dragged`, stepping the batch when full.
   void BatchDragged(std::size_t index, bool loaded, bool within_one_step_bound, Share* share);
@@ -173,7 +182,7 @@ class StepEngine {
   // The drag flow over dt/2 of the bodies with drag in indices [begin, end)
   // that are not frozen; context_.drag not null.
   void AdvanceDragged(std::size_t begin, std::size_t end) const;
-  // drag_flows_ for the step's bodies with drag and dt, if they are not.
+  // drag_flows_ for the step's bodies with drag, if they are not.
   void PrepareDragFlows(const BodyStore& bodies);
   // Fills the store's step records from the states and loads at the start of
   // the step.
@@ -181,13 +190,13 @@ class StepEngine {
 
   Workspace workspace_;
   ThreadTeam team_;
-  // The step under way (Step): its bodies' columns and its settings.
+  StepSettings settings_;
+  // The step under way (Step): its bodies' columns and what is new in it.
   BodyHotColumns* hot_ = nullptr;
   StepContext context_;
   // The drag flow over dt/2 of each body of StepDrag::bodies, in its order;
   // empty when the bodies with drag changed since they were made.
   std::vector<DragFlow> drag_flows_;
-  double drag_flows_dt_s_ = 0.0;
 };
 
 }  // namespace rigid_body_sim::core

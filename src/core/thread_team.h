@@ -41,6 +41,15 @@ class ThreadTeam {
   // other processes or by costlier items does less of the work.
   template <typename Work>
   void ForBlocks(std::size_t items, std::size_t chunk, Work& work) {
+    if (threads_.empty()) {
+      // A team of one takes the blocks in order, as Run would, without a
+      // round or an atomic count: a step of a small scene is short enough to
+      // feel them.
+      for (std::size_t begin = 0; begin < items; begin += chunk) {
+        work(0, begin, std::min(begin + chunk, items));
+      }
+      return;
+    }
     next_block_.store(0, std::memory_order_relaxed);  // Run's mutex publishes it
     auto take_blocks = [&](std::size_t member) {
       for (;;) {

@@ -32,7 +32,8 @@ World::World(const WorldDef& def, std::vector<BodyDef> bodies)
     actuators_.AddBody(id, i, bodies_.hot().models[i], bodies_.cold().frames[i],
                        std::move(thrusters), options_.dt_s);
   }
-  engine_ = std::make_unique<StepEngine>(options_.threads);
+  engine_ = std::make_unique<StepEngine>(
+      options_.threads, StepSettings{integrator_.get(), options_.dt_s, options_.max_substeps});
 }
 
 World::~World() = default;
@@ -125,8 +126,7 @@ void World::Step() {
   }
   last_step_recorded_ = record_next_step_;
   record_next_step_ = false;
-  StepContext context{integrator_.get(), options_.dt_s, options_.max_substeps,
-                      !loads_changed && !thrust_changed, last_step_recorded_};
+  StepContext context{!loads_changed && !thrust_changed, last_step_recorded_};
   std::optional<StepDrag> drag;
   if (!dragged_.empty()) context.drag = &drag.emplace(StepDrag{&dragged_, wind_.velocity_mps()});
   const StepCounts counts = engine_->Step(&bodies_, context);
@@ -186,7 +186,7 @@ void World::SetWindVelocity(const Eigen::Vector3d& velocity_mps) {
 void World::SetIntegrator(const std::string& name) {
   integrator_ = MakeIntegrator(name);
   options_.integrator = name;
-  engine_->OnIntegratorChanged();
+  engine_->OnIntegratorChanged(*integrator_);
 }
 
 }  // namespace rigid_body_sim::core
