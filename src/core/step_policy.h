@@ -167,20 +167,32 @@ struct StepPlan {
   bool within_one_step_bound;
 };
 
-// The plan of a body's step. `one_step_momentum_sq` is OneStepMomentumSq of
-// its model, kept per body so that the common case costs one compare.
-inline StepPlan PlanStep(const Integrator& integrator, const BodyModel& model,
-                         const BodyState& state, const HeldLoads* load, double one_step_momentum_sq,
-                         double dt_s, std::uint32_t max_substeps) {
-  if (load == nullptr && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0)) {
-    return {StepClass::kAtRest, 0, false};
-  }
+// Unloaded and still (StepClass::kAtRest).
+inline bool IsAtRest(const BodyState& state, bool loaded) {
+  return !loaded && state.linear_momentum.isZero(0.0) && state.angular_momentum.isZero(0.0);
+}
+
+// The plan of the step of a body not at rest (IsAtRest false).
+// `one_step_momentum_sq` is OneStepMomentumSq of its model, kept per body so
+// that the common case costs one compare.
+inline StepPlan PlanMovingStep(const Integrator& integrator, const BodyModel& model,
+                               const BodyState& state, const HeldLoads* load,
+                               double one_step_momentum_sq, double dt_s,
+                               std::uint32_t max_substeps) {
   const bool within = MomentumReachSq(state, load, dt_s) <= one_step_momentum_sq;
   const std::uint32_t substeps =
       within ? 1 : SubstepsFor(integrator, model, state, load, dt_s, max_substeps);
   if (substeps == 0) return {StepClass::kFrozen, 0, false};
   if (substeps == 1 && model.is_full_rank()) return {StepClass::kBatched, 1, within};
   return {StepClass::kSubsteps, substeps, within};
+}
+
+// The plan of a body's step.
+inline StepPlan PlanStep(const Integrator& integrator, const BodyModel& model,
+                         const BodyState& state, const HeldLoads* load, double one_step_momentum_sq,
+                         double dt_s, std::uint32_t max_substeps) {
+  if (IsAtRest(state, load != nullptr)) return {StepClass::kAtRest, 0, false};
+  return PlanMovingStep(integrator, model, state, load, one_step_momentum_sq, dt_s, max_substeps);
 }
 
 }  // namespace rigid_body_sim::core
