@@ -52,10 +52,16 @@ SimClient::SimClient(const std::string& node, ros::WallDuration timeout)
   }
 }
 
+// Each service keeps one connection: a connection per call (ros::service::call)
+// lets roscpp report a served request as failed when the node closes it before
+// the answer is read (ros_comm issue 1976). A connection lost with a node that
+// restarted is opened again on the next call.
 template <typename Service>
 void SimClient::Call(const char* name, Service* service) {
   const std::string resolved = node_ + "/" + name;
-  if (!ros::service::call(resolved, *service)) {
+  ros::ServiceClient& client = services_[name];
+  if (!client.isValid()) client = nh_.serviceClient<Service>(name, true);
+  if (!client.call(*service)) {
     throw ServiceError(resolved + ": the call failed (is the node running?)");
   }
   const std::string refusal = Refusal(service->response, 0);

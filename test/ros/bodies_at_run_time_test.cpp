@@ -28,20 +28,10 @@ using rbs_test::WaitFor;
 constexpr double kDt = 1e-3;
 constexpr double kRoundOff = 1e-12;
 
-// Calls `service` on a persistent connection (one master lookup for the whole
-// test, not one per call, as ros::service::call would do, which failed once
-// in ~100 calls on a loaded machine); a connection that broke is opened
-// again once. A refusal by the node is a response, never retried.
+// The node's answer to `service`; a call that failed reads as a refusal.
 template <typename Srv>
 typename Srv::Response Call(const std::string& service, Srv srv) {
-  static std::map<std::string, ros::ServiceClient> clients;
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    ros::ServiceClient& client = clients[service];
-    if (!client.isValid())
-      client = ros::NodeHandle().serviceClient<Srv>(TheSim().Name(service), true);
-    if (client.call(srv)) return srv.response;
-    client.shutdown();
-  }
+  if (TheSim().Call(service, srv)) return srv.response;
   srv.response.success = false;
   srv.response.message = "call failed";
   return srv.response;

@@ -43,7 +43,7 @@ class BodyWrenches : public ::testing::Test {
     }
     ASSERT_TRUE(sim.PauseAndReset());
     rigid_body_sim::ClearBodyWrenches clear;  // also the jobs, which ~clear_wrenches drops too
-    ASSERT_TRUE(ros::service::call(sim.Name("clear_body_wrenches"), clear));
+    ASSERT_TRUE(sim.Call("clear_body_wrenches", clear));
   }
 
   static geometry_msgs::WrenchStamped Wrench(double fx, double fy, double fz, double tx, double ty,
@@ -72,13 +72,7 @@ class BodyWrenches : public ::testing::Test {
     srv.request.reference_point.z = pz;
     srv.request.wrench.force = rbs_test::V3(fx, fy, fz);
     srv.request.duration = ros::Duration(duration_s);
-    // One persistent connection: of a thousand calls in a row, each on a
-    // fresh connection (roscpp's non-persistent call), one now and then
-    // reports failure on a loaded machine while the node serves the others.
-    static ros::ServiceClient client =
-        ros::NodeHandle().serviceClient<rigid_body_sim::ApplyBodyWrench>(
-            TheSim().Name("apply_body_wrench"), true);
-    if (!client.call(srv)) {
+    if (!TheSim().Call("apply_body_wrench", srv)) {
       srv.response.success = false;
       srv.response.message = "call failed";
     }
@@ -230,13 +224,13 @@ TEST_F(BodyWrenches, JobsAddUpAndClearBodyWrenchesStopsThem) {
   EXPECT_NEAR(Cube(s).linear_momentum.z, 2.5 * 10 * kDt, kRoundOff);
   rigid_body_sim::ClearBodyWrenches clear;
   clear.request.body = "cube";
-  ASSERT_TRUE(ros::service::call(sim.Name("clear_body_wrenches"), clear));
+  ASSERT_TRUE(sim.Call("clear_body_wrenches", clear));
   EXPECT_TRUE(clear.response.success) << clear.response.message;
   ASSERT_TRUE(sim.StepAndGet(10, &s));
   EXPECT_NEAR(Cube(s).linear_momentum.z, 2.5 * 10 * kDt, kRoundOff);  // nothing more on cube
   EXPECT_NEAR(FindBody(s, "other")->linear_momentum.x, 20 * kDt, kRoundOff);  // other's goes on
   clear.request.body = "nobody";
-  ASSERT_TRUE(ros::service::call(sim.Name("clear_body_wrenches"), clear));
+  ASSERT_TRUE(sim.Call("clear_body_wrenches", clear));
   EXPECT_FALSE(clear.response.success);
 }
 
@@ -256,7 +250,7 @@ TEST_F(BodyWrenches, BadJobsAreRefusedNamingTheField) {
   late.request.body = "cube";
   late.request.start_time = ros::Time(1.0);
   late.request.duration = ros::Duration(0.5);
-  ASSERT_TRUE(ros::service::call(sim.Name("apply_body_wrench"), late));
+  ASSERT_TRUE(sim.Call("apply_body_wrench", late));
   expect_refused(late.response, "start_time + duration");
   rigid_body_sim::BodyStateArray s;
   ASSERT_TRUE(sim.StepAndGet(5, &s));

@@ -107,30 +107,28 @@ TEST(Interface, ServicesExistWithTypes) {
   // Each call below succeeds at the transport level only if the type matches.
   {
     std_srvs::Empty srv;
-    EXPECT_TRUE(ros::service::call(sim.Name("reset"), srv)) << "~reset is not std_srvs/Empty";
+    EXPECT_TRUE(sim.Call("reset", srv)) << "~reset is not std_srvs/Empty";
   }
   {
     std_srvs::Empty srv;
-    EXPECT_TRUE(ros::service::call(sim.Name("clear_wrenches"), srv))
-        << "~clear_wrenches is not std_srvs/Empty";
+    EXPECT_TRUE(sim.Call("clear_wrenches", srv)) << "~clear_wrenches is not std_srvs/Empty";
   }
   {
     std_srvs::SetBool srv;
     srv.request.data = false;  // already running: harmless
-    EXPECT_TRUE(ros::service::call(sim.Name("set_paused"), srv))
-        << "~set_paused is not std_srvs/SetBool";
+    EXPECT_TRUE(sim.Call("set_paused", srv)) << "~set_paused is not std_srvs/SetBool";
   }
   {
     rigid_body_sim::Step srv;
     srv.request.steps = 0;  // fails as documented, but the call goes through
-    EXPECT_TRUE(ros::service::call(sim.Name("step"), srv)) << "~step is not rigid_body_sim/Step";
+    EXPECT_TRUE(sim.Call("step", srv)) << "~step is not rigid_body_sim/Step";
     EXPECT_FALSE(srv.response.success);
   }
   {
     rigid_body_sim::SetBodyState srv;
     srv.request.body = "no_such_body";
     srv.request.pose.orientation.w = 1.0;
-    EXPECT_TRUE(ros::service::call(sim.Name("set_body_state"), srv))
+    EXPECT_TRUE(sim.Call("set_body_state", srv))
         << "~set_body_state is not rigid_body_sim/SetBodyState";
     EXPECT_FALSE(srv.response.success);
   }

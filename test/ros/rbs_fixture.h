@@ -246,24 +246,40 @@ class Sim {
     return ::testing::AssertionSuccess();
   }
 
+  // Calls the node's service `rel` on a connection kept for the process.
+  // ros::service::call opens one per call, and roscpp can then report a
+  // served request as failed when the node closes that connection before the
+  // answer is read (ros_comm issue 1976); a kept connection is never closed
+  // by the node. A request is never sent twice: a failed call may have run.
+  template <typename Srv>
+  bool Call(const std::string& rel, Srv& srv) {
+    ros::ServiceClient* client;
+    {
+      std::lock_guard<std::mutex> l(clients_mu_);
+      client = &clients_[rel];
+      if (!client->isValid()) *client = nh_.serviceClient<Srv>(Name(rel), true);
+    }
+    return client->call(srv);
+  }
+
   bool SetPaused(bool paused) {
     std_srvs::SetBool srv;
     srv.request.data = paused;
-    return ros::service::call(Name("set_paused"), srv) && srv.response.success;
+    return Call("set_paused", srv) && srv.response.success;
   }
   bool Reset() {
     std_srvs::Empty srv;
-    return ros::service::call(Name("reset"), srv);
+    return Call("reset", srv);
   }
   bool ClearWrenches() {
     std_srvs::Empty srv;
-    return ros::service::call(Name("clear_wrenches"), srv);
+    return Call("clear_wrenches", srv);
   }
   // Calls ~step; returns the response (success false also when the call failed).
   rigid_body_sim::Step::Response Step(uint32_t n, bool* call_ok = nullptr) {
     rigid_body_sim::Step srv;
     srv.request.steps = n;
-    const bool ok = ros::service::call(Name("step"), srv);
+    const bool ok = Call("step", srv);
     if (call_ok) *call_ok = ok;
     if (!ok) srv.response.success = false;
     return srv.response;
@@ -300,7 +316,7 @@ class Sim {
     srv.request.body = body;
     srv.request.pose = pose;
     srv.request.twist = twist;
-    const bool ok = ros::service::call(Name("set_body_state"), srv);
+    const bool ok = Call("set_body_state", srv);
     if (message) *message = srv.response.message;
     return ok && srv.response.success;
   }
@@ -322,6 +338,8 @@ class Sim {
   std::optional<::testing::AssertionResult> connect_result_;
   ros::NodeHandle nh_;
   ros::Publisher wrench_pub_, array_pub_;
+  std::mutex clients_mu_;
+  std::map<std::string, ros::ServiceClient> clients_;  // by service name relative to ns_
 };
 
 // One Sim per test process, shared by its TESTs.

@@ -66,7 +66,7 @@ std::optional<Values> Reconfigure(const std::map<std::string, double>& doubles,
     p.value = value;
     srv.request.config.bools.push_back(p);
   }
-  if (!ros::service::call(TheSim().Name("set_parameters"), srv)) return std::nullopt;
+  if (!TheSim().Call("set_parameters", srv)) return std::nullopt;
   return FromMsg(srv.response.config);
 }
 

@@ -238,13 +238,17 @@ TEST(Sensors, NoisySensorsHaveTheirStddevsCovariancesAndTurnOnBias) {
         return white.NumPublishers() > 0 && biased.NumPublishers() > 0 && mocap.NumPublishers() > 0;
       },
       rbs_test::kStartupTimeout));
-  // 20,000 steps, 50 per call (each sensor's queue holds 100): 10,000
-  // imu_white samples at 50 Hz, 20,000 of the others.
+  // 20,000 steps, 50 per call: 10,000 imu_white samples at 50 Hz, 20,000 of
+  // the others. Each call's samples arrive before the next call: the node
+  // queues 100 of each sensor, and its network thread, starved on a loaded
+  // machine, would otherwise drop what two calls publish.
   constexpr int kCalls = 400;
-  for (int call = 0; call < kCalls; ++call) ASSERT_TRUE(node.Step(50));
-  ASSERT_TRUE(white.WaitCount(kCalls * 25));
-  ASSERT_TRUE(biased.WaitCount(kCalls * 50));
-  ASSERT_TRUE(mocap.WaitCount(kCalls * 50));
+  for (int call = 1; call <= kCalls; ++call) {
+    ASSERT_TRUE(node.Step(50));
+    ASSERT_TRUE(white.WaitCount(call * 25));
+    ASSERT_TRUE(biased.WaitCount(call * 50));
+    ASSERT_TRUE(mocap.WaitCount(call * 50));
+  }
 
   // White noise: σ = density √rate.
   const double gyro_sigma = 0.002 * std::sqrt(50.0);
@@ -332,11 +336,14 @@ TEST(Sensors, BiasRandomWalksHaveTheAllanSlopeOfAWalk) {
       },
       rbs_test::kStartupTimeout));
   SleepWall(rbs_test::kSettle);
-  // 360,000 steps at 100 Hz, 500 per call (each sensor's queue holds 100):
-  // 36,000 samples of each.
+  // 360,000 steps at 100 Hz, 500 per call: 36,000 samples of each, each
+  // call's 50 heard before the next call (the node queues 100 of each).
   constexpr int kCalls = 720;
   constexpr std::size_t kSamples = kCalls * 50;
-  for (int call = 0; call < kCalls; ++call) ASSERT_TRUE(node.Step(500));
+  for (int call = 1; call <= kCalls; ++call) {
+    ASSERT_TRUE(node.Step(500));
+    for (const Recorder<sensor_msgs::Imu>& walk : walks) ASSERT_TRUE(walk.WaitCount(call * 50));
+  }
   double variance_10 = 0.0, variance_100 = 0.0;
   for (const Recorder<sensor_msgs::Imu>& walk : walks) {
     ASSERT_TRUE(walk.WaitCount(kSamples));
@@ -423,7 +430,7 @@ TEST(Sensors, ASpawnedBodysSensorsPublishAndAnOffLatticeRateIsRefused) {
       "sensors: [{type: imu, name: imu_raw, site: craft_imu, rate: ";
   rigid_body_sim::SpawnBody refused;
   refused.request.body_yaml = craft + "30}]}";
-  ASSERT_TRUE(ros::service::call(node.sim.Name("spawn_body"), refused));
+  ASSERT_TRUE(node.sim.Call("spawn_body", refused));
   EXPECT_FALSE(refused.response.success);
   EXPECT_EQ(refused.response.message,
             "sensors[0] (name 'imu_raw').rate 30 Hz: its samples are not a whole number of steps "
@@ -431,7 +438,7 @@ TEST(Sensors, ASpawnedBodysSensorsPublishAndAnOffLatticeRateIsRefused) {
 
   rigid_body_sim::SpawnBody spawn;
   spawn.request.body_yaml = craft + "50}]}";
-  ASSERT_TRUE(ros::service::call(node.sim.Name("spawn_body"), spawn));
+  ASSERT_TRUE(node.sim.Call("spawn_body", spawn));
   ASSERT_TRUE(spawn.response.success) << spawn.response.message;
   ros::NodeHandle nh;
   Recorder<sensor_msgs::Imu> imu;
@@ -452,7 +459,7 @@ TEST(Sensors, ASpawnedBodysSensorsPublishAndAnOffLatticeRateIsRefused) {
   }
   rigid_body_sim::DeleteBody remove;
   remove.request.body = "craft";
-  ASSERT_TRUE(ros::service::call(node.sim.Name("delete_body"), remove));
+  ASSERT_TRUE(node.sim.Call("delete_body", remove));
   EXPECT_TRUE(remove.response.success) << remove.response.message;
 }
 

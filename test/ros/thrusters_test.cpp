@@ -289,7 +289,7 @@ TEST(Thrusters, ASpawnedBodyTakesCommandsOnItsOwnTopic) {
       "{name: pod, inertial: {mass: 1.0, inertia: {ixx: 0.1, ixy: 0, ixz: 0, iyy: 0.1, iyz: 0, "
       "izz: 0.1}}, position: [0, -3, 0], sites: [{name: pod_jet}], actuators: [{name: jet, site: "
       "pod_jet, max_thrust: 2.0}]}";
-  ASSERT_TRUE(ros::service::call(node.sim.Name("spawn_body"), spawn));
+  ASSERT_TRUE(node.sim.Call("spawn_body", spawn));
   ASSERT_TRUE(spawn.response.success) << spawn.response.message;
   ros::NodeHandle nh;
   ros::Publisher pod =
@@ -304,7 +304,7 @@ TEST(Thrusters, ASpawnedBodyTakesCommandsOnItsOwnTopic) {
   EXPECT_NEAR(FindBody(s, "pod")->linear_momentum.z, impulse, RoundOff(impulse, 10));
   rigid_body_sim::DeleteBody remove;
   remove.request.body = "pod";
-  ASSERT_TRUE(ros::service::call(node.sim.Name("delete_body"), remove));
+  ASSERT_TRUE(node.sim.Call("delete_body", remove));
   EXPECT_TRUE(remove.response.success) << remove.response.message;
 }
 

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -74,7 +75,8 @@ class SimClient {
   std::string node_;
   ros::NodeHandle nh_;
   double rate_hz_;
-  ros::CallbackQueue bodies_queue_;  // ~bodies only, served by State()
+  std::map<std::string, ros::ServiceClient> services_;  // by service name, kept connected
+  ros::CallbackQueue bodies_queue_;                     // ~bodies only, served by State()
   ros::Subscriber bodies_;
   BodyStateArray::ConstPtr latest_;
 };
