@@ -62,6 +62,8 @@ StepCounts StepEngine::Step(BodyStore* bodies, StepContext context) {
   if (has_drag) PrepareDragFlows(*bodies);
   const std::size_t size = bodies->size();
   if (settings_.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
+  keep_load_parts_ = !context.loads_kept || workspace_.load_parts.size() != size;
+  workspace_.load_parts.resize(size);
   if (context.record) RecordStepStart(bodies);
   for (Share& share : workspace_.shares) {
     share.counts = StepCounts{};
@@ -120,6 +122,7 @@ inline BodyBatch StepEngine::Batch(const std::vector<std::size_t>& indices, Lane
   std::vector<ExactFreeFlow>& flows = workspace_.free_flows;
   return {hot_->models.data(),
           hot_->loads.data(),
+          workspace_.load_parts.data(),
           hot_->states.data(),
           indices.data(),
           indices.size(),
@@ -163,7 +166,11 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   // Whether every body in the free and the loaded batch is within PlanStep's
   // cheap bound (BodyBatch::within_one_step_bound).
   bool free_within_bound = true, loaded_within_bound = true;
+  HeldLoadParts* load_parts = workspace_.load_parts.data();
+  const bool keep_load_parts = keep_load_parts_;
   for (std::size_t i = begin; i < end; ++i) {
+    // A frozen body's too: it may move again in a step that keeps none.
+    if (keep_load_parts && hot.loaded[i]) load_parts[i].Keep(hot.loads[i], hot.models[i]);
     if (hot.faults[i] != BodyFault::kNone) continue;
     const BodyModel& model = hot.models[i];
     const BodyState& state = hot.states[i];
@@ -172,7 +179,9 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       i = EndOfRest(hot, i + 1, end) - 1;
       continue;
     }
-    const StepPlan plan = PlanMovingStep(integrator, model, state, load,
+    // The load's bound from its parts: the plan reads nothing of the HeldLoads.
+    const double torque_bound = load != nullptr ? load_parts[i].torque_bound() : 0.0;
+    const StepPlan plan = PlanMovingStep(integrator, model, state, load, torque_bound,
                                          hot.one_step_momentum_sq[i], dt_s, max_substeps);
     switch (plan.step_class) {
       case StepClass::kAtRest:

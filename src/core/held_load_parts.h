@@ -1,0 +1,78 @@
+// What a loaded step reads of a body's HeldLoads, packed into two cache
+// lines: the torque bound its plan reads, the flags that pick its lanes, the
+// stamp of its principal parts, and those parts (HeldLoads::InPrincipalFrame)
+// with the world-axes ones and the damping, each part left out when all its
+// bits are zero. A HeldLoads is 448 B, of which a step reads four lines in
+// two passes (the plan, then the lanes) while the hardware prefetchers stream
+// all seven: at scale the step's data then no longer fits the last-level
+// cache. The StepEngine keeps one of these per body beside the store, kept
+// anew in each step whose loads changed, and a loaded body's step through
+// the lanes reads these alone. Parts too many for the two lines (a body with
+// nearly every kind of load) stay in the HeldLoads, which the lanes then read.
+#pragma once
+
+#include <array>
+#include <cstdint>
+
+#include "rigid_body_sim/core/body_model.h"
+#include "rigid_body_sim/core/held_loads.h"
+#include "rigid_body_sim/core/load.h"
+
+namespace rigid_body_sim::core {
+
+class alignas(64) HeldLoadParts {
+ public:
+  // The parts, in the order they are packed.
+  enum Part : std::uint8_t {
+    kForceWorld,       // F_W
+    kTorqueWorld,      // τ_W
+    kForcePrincipal,   // R_BPᵀ F_B
+    kTorquePrincipal,  // R_BPᵀ τ_B
+    kForceMoment,      // C R_BP, row-major
+    kDamping,          // linear, angular [1/s]
+    kParts
+  };
+
+  // Keeps what a step reads of `loads`, held on a body of `model`.
+  void Keep(const HeldLoads& loads, const BodyModel& model);
+
+  double torque_bound() const { return torque_bound_; }
+  bool has_torque() const { return (flags_ & kHasTorque) != 0; }
+  bool has_body_axes() const { return (flags_ & kHasBodyAxes) != 0; }
+  bool has_force_moment() const { return (flags_ & kHasForceMoment) != 0; }
+  bool has_damping() const { return (flags_ & kHasDamping) != 0; }
+  // The stamp of the principal parts (HeldLoads::PrincipalParts::stamp).
+  std::uint64_t stamp() const { return stamp_; }
+  // The parts did not fit: the step reads them from the HeldLoads.
+  bool in_loads() const { return (flags_ & kInLoads) != 0; }
+  // A part's values (+0.0 where it was left out); not in_loads.
+  const double* part(Part part) const {
+    return offsets_[part] == kLeftOut ? kZeros.data() : packed_ + offsets_[part];
+  }
+  Damping damping() const {
+    const double* rates = part(kDamping);
+    return {rates[0], rates[1]};
+  }
+
+ private:
+  enum Flag : std::uint8_t {
+    kHasTorque = 1,
+    kHasBodyAxes = 2,
+    kHasForceMoment = 4,
+    kHasDamping = 8,
+    kInLoads = 16,
+  };
+  static constexpr std::uint8_t kLeftOut = 0xff;
+  static constexpr std::array<double, 9> kZeros = {};
+  // What the two lines hold of packed parts after the fields before them.
+  static constexpr int kPacked = 13;
+
+  double torque_bound_ = 0.0;
+  std::uint64_t stamp_ = 0;
+  std::uint8_t flags_ = 0;
+  std::array<std::uint8_t, kParts> offsets_ = {};
+  double packed_[kPacked];
+};
+static_assert(sizeof(HeldLoadParts) == 128, "two cache lines");
+
+}  // namespace rigid_body_sim::core
