@@ -23,7 +23,7 @@ void HeldLoadParts::Keep(const HeldLoads& loads, const BodyModel& model) {
   stamp_ = principal.stamp;
   flags_ = (loads.has_torque() ? kHasTorque : 0) | (loads.has_body_axes() ? kHasBodyAxes : 0) |
            (loads.has_force_moment() ? kHasForceMoment : 0) |
-           (loads.has_damping() ? kHasDamping : 0);
+           (loads.has_damping() ? kHasDamping : 0) | (model.is_full_rank() ? kBodyFullRank : 0);
   const Damping damping = loads.damping();
   const double rates[2] = {damping.linear_per_s, damping.angular_per_s};
   double moment[9];  // row-major, as the lanes hold it

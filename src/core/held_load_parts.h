@@ -1,14 +1,13 @@
 // What a loaded step reads of a body's HeldLoads, packed into two cache
-// lines: the torque bound its plan reads, the flags that pick its lanes, the
-// stamp of its principal parts, and those parts (HeldLoads::InPrincipalFrame)
-// with the world-axes ones and the damping, each part left out when all its
-// bits are zero. A HeldLoads is 448 B, of which a step reads four lines in
-// two passes (the plan, then the lanes) while the hardware prefetchers stream
-// all seven: at scale the step's data then no longer fits the last-level
-// cache. The StepEngine keeps one of these per body beside the store, kept
-// anew in each step whose loads changed, and a loaded body's step through
-// the lanes reads these alone. Parts too many for the two lines (a body with
-// nearly every kind of load) stay in the HeldLoads, which the lanes then read.
+// lines: the torque bound and the model's rank its plan reads, the flags
+// that pick its lanes, the stamp of its principal parts, and those parts
+// (HeldLoads::InPrincipalFrame) with the world-axes ones and the damping,
+// each part left out when all its bits are zero. A HeldLoads is 448 B, of which a step reads four
+// lines in two passes (the plan, then the lanes) while the hardware prefetchers stream all seven:
+// at scale the step's data then no longer fits the last-level cache. The StepEngine keeps one of
+// these per body beside the store, kept anew in each step whose loads changed, and a loaded body's
+// step through the lanes reads these alone. Parts too many for the two lines (a body with nearly
+// every kind of load) stay in the HeldLoads, which the lanes then read.
 #pragma once
 
 #include <array>
@@ -41,6 +40,8 @@ class alignas(64) HeldLoadParts {
   bool has_body_axes() const { return (flags_ & kHasBodyAxes) != 0; }
   bool has_force_moment() const { return (flags_ & kHasForceMoment) != 0; }
   bool has_damping() const { return (flags_ & kHasDamping) != 0; }
+  // The body's BodyModel::is_full_rank, which its step's plan reads.
+  bool body_full_rank() const { return (flags_ & kBodyFullRank) != 0; }
   // The stamp of the principal parts (HeldLoads::PrincipalParts::stamp).
   std::uint64_t stamp() const { return stamp_; }
   // The parts did not fit: the step reads them from the HeldLoads.
@@ -61,6 +62,7 @@ class alignas(64) HeldLoadParts {
     kHasForceMoment = 4,
     kHasDamping = 8,
     kInLoads = 16,
+    kBodyFullRank = 32,
   };
   static constexpr std::uint8_t kLeftOut = 0xff;
   static constexpr std::array<double, 9> kZeros = {};

@@ -179,9 +179,11 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       i = EndOfRest(hot, i + 1, end) - 1;
       continue;
     }
-    // The load's bound from its parts: the plan reads nothing of the HeldLoads.
+    // A loaded body's bound and rank from its parts: the plan reads nothing
+    // of its HeldLoads or model, which its lanes read later.
     const double torque_bound = load != nullptr ? load_parts[i].torque_bound() : 0.0;
-    const StepPlan plan = PlanMovingStep(integrator, model, state, load, torque_bound,
+    const bool full_rank = load != nullptr ? load_parts[i].body_full_rank() : model.is_full_rank();
+    const StepPlan plan = PlanMovingStep(integrator, model, state, load, torque_bound, full_rank,
                                          hot.one_step_momentum_sq[i], dt_s, max_substeps);
     switch (plan.step_class) {
       case StepClass::kAtRest:

@@ -181,11 +181,11 @@ inline bool IsAtRest(const BodyState& state, bool loaded) {
 // The plan of the step of a body not at rest (IsAtRest false).
 // `one_step_momentum_sq` is OneStepMomentumSq of its model, kept per body so
 // that the common case costs one compare; `torque_bound` is the load's
-// TorqueBound (unread without a load), so that the common case does not
-// read the load.
+// TorqueBound (unread without a load) and `full_rank` the model's
+// is_full_rank, so that the common case reads neither the load nor the model.
 inline StepPlan PlanMovingStep(const Integrator& integrator, const BodyModel& model,
                                const BodyState& state, const HeldLoads* load, double torque_bound,
-                               double one_step_momentum_sq, double dt_s,
+                               bool full_rank, double one_step_momentum_sq, double dt_s,
                                std::uint32_t max_substeps) {
   const double reach_sq = load != nullptr ? LoadedMomentumReachSq(state, torque_bound, dt_s)
                                           : state.angular_momentum.squaredNorm();
@@ -193,7 +193,7 @@ inline StepPlan PlanMovingStep(const Integrator& integrator, const BodyModel& mo
   const std::uint32_t substeps =
       within ? 1 : SubstepsFor(integrator, model, state, load, dt_s, max_substeps);
   if (substeps == 0) return {StepClass::kFrozen, 0, false};
-  if (substeps == 1 && model.is_full_rank()) return {StepClass::kBatched, 1, within};
+  if (substeps == 1 && full_rank) return {StepClass::kBatched, 1, within};
   return {StepClass::kSubsteps, substeps, within};
 }
 
@@ -203,7 +203,7 @@ inline StepPlan PlanStep(const Integrator& integrator, const BodyModel& model,
                          double dt_s, std::uint32_t max_substeps) {
   if (IsAtRest(state, load != nullptr)) return {StepClass::kAtRest, 0, false};
   return PlanMovingStep(integrator, model, state, load, load != nullptr ? load->TorqueBound() : 0.0,
-                        one_step_momentum_sq, dt_s, max_substeps);
+                        model.is_full_rank(), one_step_momentum_sq, dt_s, max_substeps);
 }
 
 }  // namespace rigid_body_sim::core
