@@ -166,11 +166,16 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   // Whether every body in the free and the loaded batch is within PlanStep's
   // cheap bound (BodyBatch::within_one_step_bound).
   bool free_within_bound = true, loaded_within_bound = true;
-  HeldLoadParts* load_parts = workspace_.load_parts.data();
-  const bool keep_load_parts = keep_load_parts_;
+  const HeldLoadParts* load_parts = workspace_.load_parts.data();
+  // In a loop of its own, which leaves the planning loop as it is in the
+  // other steps; a frozen body's too, as it may move again in a step that
+  // keeps none.
+  if (keep_load_parts_) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (hot.loaded[i]) workspace_.load_parts[i].Keep(hot.loads[i], hot.models[i]);
+    }
+  }
   for (std::size_t i = begin; i < end; ++i) {
-    // A frozen body's too: it may move again in a step that keeps none.
-    if (keep_load_parts && hot.loaded[i]) load_parts[i].Keep(hot.loads[i], hot.models[i]);
     if (hot.faults[i] != BodyFault::kNone) continue;
     const BodyModel& model = hot.models[i];
     const BodyState& state = hot.states[i];
@@ -180,11 +185,15 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       continue;
     }
     // A loaded body's bound and rank from its parts: the plan reads nothing
-    // of its HeldLoads or model, which its lanes read later.
-    const double torque_bound = load != nullptr ? load_parts[i].torque_bound() : 0.0;
-    const bool full_rank = load != nullptr ? load_parts[i].body_full_rank() : model.is_full_rank();
-    const StepPlan plan = PlanMovingStep(integrator, model, state, load, torque_bound, full_rank,
-                                         hot.one_step_momentum_sq[i], dt_s, max_substeps);
+    // of its HeldLoads or model, which its lanes read later. Planned in two
+    // branches, each with the plan inline for its kind of body.
+    const StepPlan plan =
+        load != nullptr
+            ? PlanMovingStep(integrator, model, state, load, load_parts[i].torque_bound(),
+                             load_parts[i].body_full_rank(), hot.one_step_momentum_sq[i], dt_s,
+                             max_substeps)
+            : PlanMovingStep(integrator, model, state, nullptr, 0.0, model.is_full_rank(),
+                             hot.one_step_momentum_sq[i], dt_s, max_substeps);
     switch (plan.step_class) {
       case StepClass::kAtRest:
         break;
