@@ -3,54 +3,54 @@
 #include <cstring>
 
 namespace rigid_body_sim::core {
-namespace {
 
-// Whether every value of [begin, begin + count) is +0.0, which the lanes get
-// for a part left out.
-bool AllPositiveZero(const double* begin, int count) {
-  static constexpr double kZero = 0.0;
-  for (int k = 0; k < count; ++k) {
-    if (std::memcmp(&begin[k], &kZero, sizeof kZero) != 0) return false;
-  }
-  return true;
-}
-
-}  // namespace
-
-void HeldLoadParts::Keep(const HeldLoads& loads, const BodyModel& model) {
+void HeldLoadParts::KeepInLoads(const HeldLoads& loads, const BodyModel& model) {
   torque_bound_ = loads.TorqueBound();
-  const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
-  stamp_ = principal.stamp;
+  stamp_ = loads.InPrincipalFrame(model.principal_axes()).stamp;
   flags_ = (loads.has_torque() ? kHasTorque : 0) | (loads.has_body_axes() ? kHasBodyAxes : 0) |
            (loads.has_force_moment() ? kHasForceMoment : 0) |
-           (loads.has_damping() ? kHasDamping : 0) | (model.is_full_rank() ? kBodyFullRank : 0);
+           (loads.has_damping() ? kHasDamping : 0) | (model.is_full_rank() ? kBodyFullRank : 0) |
+           kInLoads;
+}
+
+void HeldLoadParts::Keep(const HeldLoads& loads, const BodyModel& model) {
+  KeepInLoads(loads, model);
+  flags_ &= ~kInLoads;
+  const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
   const Damping damping = loads.damping();
   const double rates[2] = {damping.linear_per_s, damping.angular_per_s};
-  double moment[9];  // row-major, as the lanes hold it
-  for (int k = 0; k < 3; ++k) {
-    for (int j = 0; j < 3; ++j) moment[3 * k + j] = principal.force_moment(k, j);
-  }
-  const std::array<const double*, kParts> values = {loads.force_world().data(),
-                                                    loads.torque_world().data(),
-                                                    principal.force_body.data(),
-                                                    principal.torque_body.data(),
-                                                    moment,
-                                                    rates};
-  static constexpr std::array<int, kParts> kSizes = {3, 3, 3, 3, 9, 2};
+  // Row-major, as the lanes hold it.
+  const Eigen::Matrix<double, 3, 3, Eigen::RowMajor> moment = principal.force_moment;
   int used = 0;
-  for (int p = 0; p < kParts; ++p) {
-    if (AllPositiveZero(values[p], kSizes[p])) {
-      offsets_[p] = kLeftOut;
-      continue;
-    }
-    if (used + kSizes[p] > kPacked) {
-      flags_ |= kInLoads;
-      return;
-    }
-    offsets_[p] = static_cast<std::uint8_t>(used);
-    for (int k = 0; k < kSizes[p]; ++k) packed_[used + k] = values[p][k];
-    used += kSizes[p];
+  Pack<3>(kForceWorld, loads.force_world().data(), &used);
+  Pack<3>(kTorqueWorld, loads.torque_world().data(), &used);
+  Pack<3>(kForcePrincipal, principal.force_body.data(), &used);
+  Pack<3>(kTorquePrincipal, principal.torque_body.data(), &used);
+  Pack<9>(kForceMoment, moment.data(), &used);
+  Pack<2>(kDamping, rates, &used);
+}
+
+template <int n>
+void HeldLoadParts::Pack(Part part, const double* values, int* used) {
+  // Left out when every value is +0.0 (all bits zero), which the lanes get
+  // for a part left out.
+  std::uint64_t bits = 0;
+  for (int k = 0; k < n; ++k) {
+    std::uint64_t value_bits;
+    std::memcpy(&value_bits, &values[k], sizeof value_bits);
+    bits |= value_bits;
   }
+  if (bits == 0) {
+    offsets_[part] = kLeftOut;
+    return;
+  }
+  if (*used + n > kPacked) {
+    flags_ |= kInLoads;
+    return;
+  }
+  offsets_[part] = static_cast<std::uint8_t>(*used);
+  std::memcpy(packed_ + *used, values, n * sizeof(double));
+  *used += n;
 }
 
 }  // namespace rigid_body_sim::core

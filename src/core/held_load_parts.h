@@ -34,6 +34,9 @@ class alignas(64) HeldLoadParts {
 
   // Keeps what a step reads of `loads`, held on a body of `model`.
   void Keep(const HeldLoads& loads, const BodyModel& model);
+  // The same but for the parts, which the step then reads from `loads`
+  // (in_loads).
+  void KeepInLoads(const HeldLoads& loads, const BodyModel& model);
 
   double torque_bound() const { return torque_bound_; }
   bool has_torque() const { return (flags_ & kHasTorque) != 0; }
@@ -44,7 +47,8 @@ class alignas(64) HeldLoadParts {
   bool body_full_rank() const { return (flags_ & kBodyFullRank) != 0; }
   // The stamp of the principal parts (HeldLoads::PrincipalParts::stamp).
   std::uint64_t stamp() const { return stamp_; }
-  // The parts did not fit: the step reads them from the HeldLoads.
+  // The parts are not packed (KeepInLoads, or too many for the two lines):
+  // the step reads them from the HeldLoads.
   bool in_loads() const { return (flags_ & kInLoads) != 0; }
   // A part's values (+0.0 where it was left out); not in_loads.
   const double* part(Part part) const {
@@ -65,6 +69,11 @@ class alignas(64) HeldLoadParts {
     kBodyFullRank = 32,
   };
   static constexpr std::uint8_t kLeftOut = 0xff;
+
+  // Packs the `n` `values` of `part` at packed_[*used] and adds n to *used,
+  // or leaves the part out, or sets kInLoads when it does not fit.
+  template <int n>
+  void Pack(Part part, const double* values, int* used);
   static constexpr std::array<double, 9> kZeros = {};
   // What the two lines hold of packed parts after the fields before them.
   static constexpr int kPacked = 13;

@@ -62,7 +62,9 @@ StepCounts StepEngine::Step(BodyStore* bodies, StepContext context) {
   if (has_drag) PrepareDragFlows(*bodies);
   const std::size_t size = bodies->size();
   if (settings_.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
-  keep_load_parts_ = !context.loads_kept || workspace_.load_parts.size() != size;
+  keep_load_parts_ =
+      !context.loads_kept || workspace_.load_parts.size() != size || load_parts_in_loads_;
+  load_parts_in_loads_ = false;
   workspace_.load_parts.resize(size);
   if (context.record) RecordStepStart(bodies);
   for (Share& share : workspace_.shares) {
@@ -90,7 +92,9 @@ StepCounts StepEngine::Step(BodyStore* bodies, StepContext context) {
     team_.ForBlocks(size, kBodiesPerBlock, step_block);
   }
   StepCounts counts;
-  for (const Share& share : workspace_.shares) {
+  for (Share& share : workspace_.shares) {
+    load_parts_in_loads_ = load_parts_in_loads_ || share.load_parts_in_loads;
+    share.load_parts_in_loads = false;
     counts.frozen += share.counts.frozen;
     counts.dropped_couples += share.counts.dropped_couples;
     counts.substeps_max = std::max(counts.substeps_max, share.counts.substeps_max);
@@ -172,7 +176,17 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   // keeps none.
   if (keep_load_parts_) {
     for (std::size_t i = begin; i < end; ++i) {
-      if (hot.loaded[i]) workspace_.load_parts[i].Keep(hot.loads[i], hot.models[i]);
+      if (!hot.loaded[i]) continue;
+      HeldLoadParts& parts = workspace_.load_parts[i];
+      const std::uint64_t kept_stamp = hot.loads[i].kept_principal_stamp();
+      if (kept_stamp == 0 || kept_stamp != parts.stamp()) {
+        // Changed since the last step: loads that change in every step (a
+        // thruster's lag) would cost more packed than read where they are.
+        parts.KeepInLoads(hot.loads[i], hot.models[i]);
+        share->load_parts_in_loads = true;
+      } else if (parts.in_loads()) {
+        parts.Keep(hot.loads[i], hot.models[i]);  // the same for a step: packed
+      }
     }
   }
   for (std::size_t i = begin; i < end; ++i) {

@@ -132,6 +132,8 @@ class StepEngine {
     };
     DraggedBatches dragged;
     StepCounts counts;
+    // Some HeldLoadParts left its parts in the loads in this step.
+    bool load_parts_in_loads = false;
   };
 
   // Every scheme's per-body and per-thread scratch, kept from step to step.
@@ -202,6 +204,9 @@ class StepEngine {
   // The step keeps each loaded body's HeldLoadParts anew: its loads may have
   // changed since the last step, or its body moved.
   bool keep_load_parts_ = false;
+  // Some body's HeldLoadParts left its parts in the loads in the last step,
+  // to be packed in the next if they stay the same.
+  bool load_parts_in_loads_ = false;
   // The drag flow over dt/2 of each body of StepDrag::bodies, in its order;
   // empty when the bodies with drag changed since they were made.
   std::vector<DragFlow> drag_flows_;

@@ -53,8 +53,10 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     queue.Flush(dt_s, [&](std::size_t l, std::size_t body) {
       BodyState next = batch.states[body];
       queue.lanes.Store(l, &next);
+      const HeldLoadParts& parts = batch.load_parts[body];
       const Eigen::Vector3d impulse =
-          dt_s * Eigen::Vector3d(batch.load_parts[body].part(HeldLoadParts::kForceWorld));
+          dt_s * (parts.in_loads() ? batch.loads[body].force_world()
+                                   : Eigen::Vector3d(parts.part(HeldLoadParts::kForceWorld)));
       next.position += (0.5 * dt_s * batch.models[body].inverse_mass()) * impulse;
       next.linear_momentum += impulse;
       CommitStep(batch, body, next);
