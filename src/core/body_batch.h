@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include "held_load_parts.h"
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
 #include "rigid_body_sim/core/body_state.h"
@@ -25,6 +26,8 @@ class LaneCache;
 struct BodyBatch {
   const BodyModel* models = nullptr;
   const HeldLoads* loads = nullptr;  // Integrator::StepLoaded only
+  // What the loaded lanes read of each load (StepLoadedInLanes only).
+  const HeldLoadParts* load_parts = nullptr;
   BodyState* states = nullptr;
   const std::size_t* indices = nullptr;
   std::size_t size = 0;

@@ -62,6 +62,10 @@ StepCounts StepEngine::Step(BodyStore* bodies, StepContext context) {
   if (has_drag) PrepareDragFlows(*bodies);
   const std::size_t size = bodies->size();
   if (settings_.integrator->continues_free_flows()) workspace_.free_flows.resize(size);
+  keep_load_parts_ =
+      !context.loads_kept || workspace_.load_parts.size() != size || load_parts_in_loads_;
+  load_parts_in_loads_ = false;
+  workspace_.load_parts.resize(size);
   if (context.record) RecordStepStart(bodies);
   for (Share& share : workspace_.shares) {
     share.counts = StepCounts{};
@@ -88,7 +92,9 @@ StepCounts StepEngine::Step(BodyStore* bodies, StepContext context) {
     team_.ForBlocks(size, kBodiesPerBlock, step_block);
   }
   StepCounts counts;
-  for (const Share& share : workspace_.shares) {
+  for (Share& share : workspace_.shares) {
+    load_parts_in_loads_ = load_parts_in_loads_ || share.load_parts_in_loads;
+    share.load_parts_in_loads = false;
     counts.frozen += share.counts.frozen;
     counts.dropped_couples += share.counts.dropped_couples;
     counts.substeps_max = std::max(counts.substeps_max, share.counts.substeps_max);
@@ -120,6 +126,7 @@ inline BodyBatch StepEngine::Batch(const std::vector<std::size_t>& indices, Lane
   std::vector<ExactFreeFlow>& flows = workspace_.free_flows;
   return {hot_->models.data(),
           hot_->loads.data(),
+          workspace_.load_parts.data(),
           hot_->states.data(),
           indices.data(),
           indices.size(),
@@ -163,6 +170,25 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
   // Whether every body in the free and the loaded batch is within PlanStep's
   // cheap bound (BodyBatch::within_one_step_bound).
   bool free_within_bound = true, loaded_within_bound = true;
+  const HeldLoadParts* load_parts = workspace_.load_parts.data();
+  // In a loop of its own, which leaves the planning loop as it is in the
+  // other steps; a frozen body's too, as it may move again in a step that
+  // keeps none.
+  if (keep_load_parts_) {
+    for (std::size_t i = begin; i < end; ++i) {
+      if (!hot.loaded[i]) continue;
+      HeldLoadParts& parts = workspace_.load_parts[i];
+      const std::uint64_t kept_stamp = hot.loads[i].kept_principal_stamp();
+      if (kept_stamp == 0 || kept_stamp != parts.stamp()) {
+        // Changed since the last step: loads that change in every step (a
+        // thruster's lag) would cost more packed than read where they are.
+        parts.KeepInLoads(hot.loads[i], hot.models[i]);
+        share->load_parts_in_loads = true;
+      } else if (parts.in_loads()) {
+        parts.Keep(hot.loads[i], hot.models[i]);  // the same for a step: packed
+      }
+    }
+  }
   for (std::size_t i = begin; i < end; ++i) {
     if (hot.faults[i] != BodyFault::kNone) continue;
     const BodyModel& model = hot.models[i];
@@ -172,8 +198,16 @@ void StepEngine::StepBlock(std::size_t begin, std::size_t end, Share* share) {
       i = EndOfRest(hot, i + 1, end) - 1;
       continue;
     }
-    const StepPlan plan = PlanMovingStep(integrator, model, state, load,
-                                         hot.one_step_momentum_sq[i], dt_s, max_substeps);
+    // A loaded body's bound and rank from its parts: the plan reads nothing
+    // of its HeldLoads or model, which its lanes read later. Planned in two
+    // branches, each with the plan inline for its kind of body.
+    const StepPlan plan =
+        load != nullptr
+            ? PlanMovingStep(integrator, model, state, load, load_parts[i].torque_bound(),
+                             load_parts[i].body_full_rank(), hot.one_step_momentum_sq[i], dt_s,
+                             max_substeps)
+            : PlanMovingStep(integrator, model, state, nullptr, 0.0, model.is_full_rank(),
+                             hot.one_step_momentum_sq[i], dt_s, max_substeps);
     switch (plan.step_class) {
       case StepClass::kAtRest:
         break;

@@ -24,6 +24,7 @@
 #include <Eigen/Core>
 
 #include "drag_flow.h"
+#include "held_load_parts.h"
 #include "integrators/exact_free_flow.h"
 #include "lane_cache.h"
 #include "rigid_body_sim/core/body_fault.h"
@@ -131,6 +132,8 @@ class StepEngine {
     };
     DraggedBatches dragged;
     StepCounts counts;
+    // Some HeldLoadParts left its parts in the loads in this step.
+    bool load_parts_in_loads = false;
   };
 
   // Every scheme's per-body and per-thread scratch, kept from step to step.
@@ -141,6 +144,10 @@ class StepEngine {
     // empty or shorter for the other schemes, and an added body leaves it
     // alone.
     std::vector<ExactFreeFlow> free_flows;
+    // What a loaded step reads of each body's HeldLoads, indexed like the
+    // store's bodies; kept anew for the loaded bodies in a step whose loads
+    // changed (keep_load_parts_).
+    std::vector<HeldLoadParts> load_parts;
   };
 
   // Steps the bodies of indices [begin, end) that move by the scheme, adding
@@ -194,6 +201,12 @@ class StepEngine {
   // The step under way (Step): its bodies' columns and what is new in it.
   BodyHotColumns* hot_ = nullptr;
   StepContext context_;
+  // The step keeps each loaded body's HeldLoadParts anew: its loads may have
+  // changed since the last step, or its body moved.
+  bool keep_load_parts_ = false;
+  // Some body's HeldLoadParts left its parts in the loads in the last step,
+  // to be packed in the next if they stay the same.
+  bool load_parts_in_loads_ = false;
   // The drag flow over dt/2 of each body of StepDrag::bodies, in its order;
   // empty when the bodies with drag changed since they were made.
   std::vector<DragFlow> drag_flows_;

@@ -55,12 +55,17 @@ inline double TurnPerMomentum(const BodyModel& model, double dt_s, double factor
 // A bound on |L|² over a step of dt_s whose kicks sum to kick_sum·dt: |L|²
 // for a free body; under a load, (|L| + kick_sum dt τ_max)² <=
 // 2 |L|² + 2 (kick_sum dt τ_max)², which spares the root.
+// LoadedMomentumReachSq takes the load's TorqueBound, which HeldLoadParts
+// keeps apart from the HeldLoads.
+inline double LoadedMomentumReachSq(const BodyState& state, double torque_bound, double dt_s,
+                                    double kick_sum = 1.0) {
+  const double kick = kick_sum * dt_s * torque_bound;
+  return 2.0 * (state.angular_momentum.squaredNorm() + kick * kick);
+}
 inline double MomentumReachSq(const BodyState& state, const HeldLoads* load, double dt_s,
                               double kick_sum = 1.0) {
-  const double momentum_sq = state.angular_momentum.squaredNorm();
-  if (load == nullptr) return momentum_sq;
-  const double kick = kick_sum * dt_s * load->TorqueBound();
-  return 2.0 * (momentum_sq + kick * kick);
+  if (load == nullptr) return state.angular_momentum.squaredNorm();
+  return LoadedMomentumReachSq(state, load->TorqueBound(), dt_s, kick_sum);
 }
 
 // Whether turn_per_momentum · √reach_sq <= max_angle_rad, squared to spare
@@ -94,20 +99,21 @@ inline bool FitsFreeWideLanes(const BodyModel& model, const BodyState& state, do
 
 // Whether a loaded body may take the loaded lanes of a kernel that reaches
 // `reach`: every turn of its step, with L grown by the kicks, within the
-// series' range.
-inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, const HeldLoads& load,
+// series' range. `torque_bound` is the load's TorqueBound.
+inline bool FitsLoadedLanes(const BodyModel& model, const BodyState& state, double torque_bound,
                             double dt_s, const LoadedLanesReach& reach = kTripleJumpReach) {
   return TurnWithin(TurnPerMomentum(model, dt_s, reach.longest_flow),
-                    MomentumReachSq(state, &load, dt_s, reach.kick_sum), kSeriesMaxAngle);
+                    LoadedMomentumReachSq(state, torque_bound, dt_s, reach.kick_sum),
+                    kSeriesMaxAngle);
 }
 
 // Whether a loaded body that does not fit the series may take the loaded
 // lanes with SinCosWide: the same turns within kWideMaxAngle.
-inline bool FitsLoadedWideLanes(const BodyModel& model, const BodyState& state,
-                                const HeldLoads& load, double dt_s,
-                                const LoadedLanesReach& reach = kTripleJumpReach) {
+inline bool FitsLoadedWideLanes(const BodyModel& model, const BodyState& state, double torque_bound,
+                                double dt_s, const LoadedLanesReach& reach = kTripleJumpReach) {
   return TurnWithin(TurnPerMomentum(model, dt_s, reach.longest_flow),
-                    MomentumReachSq(state, &load, dt_s, reach.kick_sum), kWideMaxAngle);
+                    LoadedMomentumReachSq(state, torque_bound, dt_s, reach.kick_sum),
+                    kWideMaxAngle);
 }
 
 // Whether PlanStep's cheap bound at dt, MomentumReachSq(state, load, dt) <=
@@ -174,16 +180,20 @@ inline bool IsAtRest(const BodyState& state, bool loaded) {
 
 // The plan of the step of a body not at rest (IsAtRest false).
 // `one_step_momentum_sq` is OneStepMomentumSq of its model, kept per body so
-// that the common case costs one compare.
+// that the common case costs one compare; `torque_bound` is the load's
+// TorqueBound (unread without a load) and `full_rank` the model's
+// is_full_rank, so that the common case reads neither the load nor the model.
 inline StepPlan PlanMovingStep(const Integrator& integrator, const BodyModel& model,
-                               const BodyState& state, const HeldLoads* load,
-                               double one_step_momentum_sq, double dt_s,
+                               const BodyState& state, const HeldLoads* load, double torque_bound,
+                               bool full_rank, double one_step_momentum_sq, double dt_s,
                                std::uint32_t max_substeps) {
-  const bool within = MomentumReachSq(state, load, dt_s) <= one_step_momentum_sq;
+  const double reach_sq = load != nullptr ? LoadedMomentumReachSq(state, torque_bound, dt_s)
+                                          : state.angular_momentum.squaredNorm();
+  const bool within = reach_sq <= one_step_momentum_sq;
   const std::uint32_t substeps =
       within ? 1 : SubstepsFor(integrator, model, state, load, dt_s, max_substeps);
   if (substeps == 0) return {StepClass::kFrozen, 0, false};
-  if (substeps == 1 && model.is_full_rank()) return {StepClass::kBatched, 1, within};
+  if (substeps == 1 && full_rank) return {StepClass::kBatched, 1, within};
   return {StepClass::kSubsteps, substeps, within};
 }
 
@@ -192,7 +202,8 @@ inline StepPlan PlanStep(const Integrator& integrator, const BodyModel& model,
                          const BodyState& state, const HeldLoads* load, double one_step_momentum_sq,
                          double dt_s, std::uint32_t max_substeps) {
   if (IsAtRest(state, load != nullptr)) return {StepClass::kAtRest, 0, false};
-  return PlanMovingStep(integrator, model, state, load, one_step_momentum_sq, dt_s, max_substeps);
+  return PlanMovingStep(integrator, model, state, load, load != nullptr ? load->TorqueBound() : 0.0,
+                        model.is_full_rank(), one_step_momentum_sq, dt_s, max_substeps);
 }
 
 }  // namespace rigid_body_sim::core

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "body_batch.h"
+#include "held_load_parts.h"
 #include "lane_cache.h"
 #include "rigid_body_sim/core/integrator.h"
 #include "rigid_body_sim/core/reference/free_body.h"
@@ -20,13 +21,31 @@
 namespace rigid_body_sim::core {
 namespace {
 
+// A batch and the parts of its loads that it reads (HeldLoadParts).
+struct LoadedBatch {
+  std::vector<HeldLoadParts> load_parts;
+  BodyBatch batch;
+};
+
 // The bodies `indices` of `world` as a batch that steps `states` under
 // `loads`, with `cache` (lane_cache.h) if given.
-BodyBatch Batch(const World& world, const std::vector<HeldLoads>& loads,
-                const std::vector<std::size_t>& indices, std::vector<BodyState>* states,
-                LaneCache* cache = nullptr) {
-  return {world.models().data(), loads.data(), states->data(), indices.data(),
-          indices.size(),        nullptr,      cache};
+LoadedBatch Batch(const World& world, const std::vector<HeldLoads>& loads,
+                  const std::vector<std::size_t>& indices, std::vector<BodyState>* states,
+                  LaneCache* cache = nullptr) {
+  LoadedBatch loaded;
+  loaded.load_parts.resize(loads.size());
+  for (std::size_t i = 0; i < loads.size(); ++i) {
+    loaded.load_parts[i].Keep(loads[i], world.models()[i]);
+  }
+  loaded.batch = {world.models().data(),
+                  loads.data(),
+                  loaded.load_parts.data(),
+                  states->data(),
+                  indices.data(),
+                  indices.size(),
+                  nullptr,
+                  cache};
+  return loaded;
 }
 
 // 19 free bodies (two full blocks of eight lanes and three more): asymmetric,
@@ -160,9 +179,9 @@ TEST(LanePolicy, PlanStepsOneStepBoundImpliesTheLanesFit) {
         EXPECT_TRUE(FitsFreeLanes(model, state, dt));
         if (held == nullptr) continue;
         for (const LoadedLanesReach& reach : admitted) {
-          EXPECT_TRUE(FitsLoadedLanes(model, state, load, dt, reach));
+          EXPECT_TRUE(FitsLoadedLanes(model, state, load.TorqueBound(), dt, reach));
         }
-        if (!FitsLoadedLanes(model, state, load, dt, refused)) ++refused_at_edge;
+        if (!FitsLoadedLanes(model, state, load.TorqueBound(), dt, refused)) ++refused_at_edge;
       }
     }
   }
@@ -331,8 +350,8 @@ TEST(LoadedLanes, TopsAndSpheresUnderCouplesAtLargeStepsAreStepBodyByBody) {
   const LoadedLanesReach least = {0.7, 1.0}, largest = {1.4, 3.0};
   for (std::size_t i = 0; i < loads.size(); ++i) {
     SCOPED_TRACE("body " + std::to_string(i));
-    ASSERT_FALSE(FitsLoadedLanes(models[i], initial[i], loads[i], dt, least));
-    ASSERT_TRUE(FitsLoadedWideLanes(models[i], initial[i], loads[i], dt, largest));
+    ASSERT_FALSE(FitsLoadedLanes(models[i], initial[i], loads[i].TorqueBound(), dt, least));
+    ASSERT_TRUE(FitsLoadedWideLanes(models[i], initial[i], loads[i].TorqueBound(), dt, largest));
   }
   // Turns per step: axis flows and rotations about L.
   const std::pair<const char*, int> schemes[] = {
@@ -344,7 +363,7 @@ TEST(LoadedLanes, TopsAndSpheresUnderCouplesAtLargeStepsAreStepBodyByBody) {
     std::vector<double> momentum_max(loads.size(), 0.0);
     const int steps = 200;
     for (int n = 0; n < steps; ++n) {
-      integrator->StepLoaded(Batch(world, loads, bodies, &states), dt);
+      integrator->StepLoaded(Batch(world, loads, bodies, &states).batch, dt);
       for (std::size_t i = 0; i < loads.size(); ++i) {
         integrator->Step(models[i], &loads[i], dt, &expected[i]);
         momentum_max[i] = std::max(momentum_max[i], expected[i].angular_momentum.norm());
@@ -461,7 +480,7 @@ TEST_P(EveryScheme, StepLoadedOfADampedBatchIsStepBodyByBody) {
   const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
   const int steps = GetParam() == "exact_free" ? 50 : 1000;
   for (int n = 0; n < steps; ++n) {
-    integrator->StepLoaded(Batch(world, loads, bodies, &states), dt);
+    integrator->StepLoaded(Batch(world, loads, bodies, &states).batch, dt);
     for (std::size_t i = 0; i < world.size(); ++i) {
       integrator->Step(world.model(i), &loads[i], dt, &expected[i]);
     }
@@ -495,9 +514,9 @@ TEST_P(EveryScheme, StepLoadedOfABodyDoesNotDependOnItsBatch) {
   const std::unique_ptr<Integrator> integrator = MakeIntegrator(GetParam());
   const int steps = GetParam() == "exact_free" ? 20 : 300;
   for (int n = 0; n < steps; ++n) {
-    integrator->StepLoaded(Batch(world, loads, bodies, &together), dt);
+    integrator->StepLoaded(Batch(world, loads, bodies, &together).batch, dt);
     for (std::size_t i = 0; i < world.size(); ++i) {
-      integrator->StepLoaded(Batch(world, loads, {i}, &alone), dt);
+      integrator->StepLoaded(Batch(world, loads, {i}, &alone).batch, dt);
     }
   }
   for (std::size_t i = 0; i < world.size(); ++i) {
@@ -589,8 +608,8 @@ TEST_P(EveryScheme, StepLoadedWithALaneCacheIsStepLoadedWithout) {
     if (n % 50 == 25) std::reverse(bodies.begin(), bodies.end());
     if (n % 50 == 0) std::rotate(bodies.begin(), bodies.begin() + 3, bodies.end());
     cache.StartStep();
-    integrator->StepLoaded(Batch(world, loads, bodies, &cached, &cache), dt);
-    integrator->StepLoaded(Batch(world, loads, bodies, &uncached), dt);
+    integrator->StepLoaded(Batch(world, loads, bodies, &cached, &cache).batch, dt);
+    integrator->StepLoaded(Batch(world, loads, bodies, &uncached).batch, dt);
     for (std::size_t i = 0; i < world.size(); ++i) {
       SCOPED_TRACE("step " + std::to_string(n) + ", body " + std::to_string(i));
       ASSERT_TRUE(test::SameBits(cached[i], uncached[i]));
@@ -638,11 +657,11 @@ TEST_P(LaneCacheOf, BlocksPastTheKeptOnesGiveWhatTheKeptOnesGive) {
     // Within the cheap bound, with the loads kept in the other steps: a
     // batch that took the reused block must not replay (BatchRecord).
     cache.StartStep(n > 0 && n != 2 && n != 4);
-    BodyBatch with_cache = Batch(world, loads, bodies, &cached, &cache);
-    BodyBatch without = Batch(world, loads, bodies, &uncached);
-    with_cache.within_one_step_bound = without.within_one_step_bound = true;
-    integrator->StepLoaded(with_cache, 1e-3);
-    integrator->StepLoaded(without, 1e-3);
+    LoadedBatch with_cache = Batch(world, loads, bodies, &cached, &cache);
+    LoadedBatch without = Batch(world, loads, bodies, &uncached);
+    with_cache.batch.within_one_step_bound = without.batch.within_one_step_bound = true;
+    integrator->StepLoaded(with_cache.batch, 1e-3);
+    integrator->StepLoaded(without.batch, 1e-3);
   }
   for (std::size_t i = 0; i < count; ++i) {
     SCOPED_TRACE("body " + std::to_string(i));
@@ -683,11 +702,11 @@ TEST(LaneCacheReplay, ABatchOfOtherBodiesInTheSamePlaceGathersThem) {
   for (int n = 0; n < 6; ++n) {
     const std::vector<std::size_t>& bodies = n % 4 < 2 ? first : second;
     cache.StartStep(n > 0);
-    BodyBatch with_cache = Batch(world, loads, bodies, &cached, &cache);
-    BodyBatch without = Batch(world, loads, bodies, &uncached);
-    with_cache.within_one_step_bound = without.within_one_step_bound = true;
-    world.integrator().StepLoaded(with_cache, dt);
-    world.integrator().StepLoaded(without, dt);
+    LoadedBatch with_cache = Batch(world, loads, bodies, &cached, &cache);
+    LoadedBatch without = Batch(world, loads, bodies, &uncached);
+    with_cache.batch.within_one_step_bound = without.batch.within_one_step_bound = true;
+    world.integrator().StepLoaded(with_cache.batch, dt);
+    world.integrator().StepLoaded(without.batch, dt);
     for (std::size_t i = 0; i < states.size(); ++i) {
       SCOPED_TRACE("step " + std::to_string(n) + ", body " + std::to_string(i));
       ASSERT_TRUE(test::SameBits(cached[i], uncached[i]));
@@ -847,15 +866,15 @@ TEST_P(EveryScheme, ABatchThatRecordsFaultsKeepsABodyPastABoundAndStepsTheOthers
     before[4].position = {1e308, 1e308, 0.0};
     std::vector<BodyState> states = before, unchecked = before;
     std::vector<BodyFault> faults(world.size(), BodyFault::kNone);
-    BodyBatch batch = Batch(world, loads, indices, &states);
-    batch.faults = faults.data();
-    const BodyBatch unchecked_batch = Batch(world, loads, indices, &unchecked);
+    LoadedBatch batch = Batch(world, loads, indices, &states);
+    batch.batch.faults = faults.data();
+    const LoadedBatch unchecked_batch = Batch(world, loads, indices, &unchecked);
     if (loaded) {
-      integrator->StepLoaded(batch, 1e-3);
-      integrator->StepLoaded(unchecked_batch, 1e-3);
+      integrator->StepLoaded(batch.batch, 1e-3);
+      integrator->StepLoaded(unchecked_batch.batch, 1e-3);
     } else {
-      integrator->StepFree(batch, 1e-3);
-      integrator->StepFree(unchecked_batch, 1e-3);
+      integrator->StepFree(batch.batch, 1e-3);
+      integrator->StepFree(unchecked_batch.batch, 1e-3);
     }
     EXPECT_EQ(faults[4], BodyFault::kNonFinite);
     EXPECT_TRUE(test::SameBits(states[4], before[4]));

@@ -18,6 +18,7 @@
 
 #include "casimir_free_lanes.h"
 #include "casimir_step.h"
+#include "held_load_parts.h"
 #include "lane_cache.h"
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
@@ -63,10 +64,10 @@ struct LoadedLanes : LaneBodies {
   // Copies body `body` into `lane` for a step numbered `cache_step`
   // (LaneCache::step): its state and model parts only when the lane did not
   // write this body's state back in the step before (held_body, held_step),
-  // its load parts only when the lane does not hold them already
-  // (load_stamp).
+  // its load parts (`parts`, or `loads` where they are kept) only when the
+  // lane does not hold them already (load_stamp).
   void Load(std::size_t lane, std::size_t body, std::uint64_t cache_step, const BodyModel& model,
-            const BodyState& state, const HeldLoads& loads);
+            const BodyState& state, const HeldLoadParts& parts, const HeldLoads& loads);
   // LaneBodies::FillIdle with no load.
   void FillIdle(std::size_t first);
   // Writes the lane's state to `state`.
@@ -75,29 +76,45 @@ struct LoadedLanes : LaneBodies {
 
 inline void LoadedLanes::Load(std::size_t lane, std::size_t body, std::uint64_t cache_step,
                               const BodyModel& model, const BodyState& state,
-                              const HeldLoads& loads) {
-  if (held_body[lane] == body && held_step[lane] + 1 == cache_step) {
-    // The lane's last load parts came from this body's frame, which has not
-    // changed since.
-    if (load_stamp[lane] == loads.kept_principal_stamp()) return;
-  } else {
+                              const HeldLoadParts& parts, const HeldLoads& loads) {
+  if (held_body[lane] != body || held_step[lane] + 1 != cache_step) {
     LaneBodies::Load(lane, model, state);
     inverse_moment_max[lane] = model.inverse_principal_moments().maxCoeff();
     held_body[lane] = body;
   }
-  const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
-  if (load_stamp[lane] == principal.stamp) return;
-  load_stamp[lane] = principal.stamp;
-  const Damping damping = loads.damping();
-  linear_damping[lane] = damping.linear_per_s;
-  angular_damping[lane] = damping.angular_per_s;
-  for (int k = 0; k < 3; ++k) {
-    force_world[k][lane] = loads.force_world()[k];
-    force_principal[k][lane] = principal.force_body[k];
-    torque_world[k][lane] = loads.torque_world()[k];
-    torque_principal[k][lane] = principal.torque_body[k];
-    for (int j = 0; j < 3; ++j) moment[3 * k + j][lane] = principal.force_moment(k, j);
+  // The lane's last load parts came from this body's frame, which has not
+  // changed since, or from another body's loads.
+  if (load_stamp[lane] == parts.stamp()) return;
+  load_stamp[lane] = parts.stamp();
+  if (parts.in_loads()) {
+    const HeldLoads::PrincipalParts& principal = loads.InPrincipalFrame(model.principal_axes());
+    const Damping damping = loads.damping();
+    linear_damping[lane] = damping.linear_per_s;
+    angular_damping[lane] = damping.angular_per_s;
+    for (int k = 0; k < 3; ++k) {
+      force_world[k][lane] = loads.force_world()[k];
+      force_principal[k][lane] = principal.force_body[k];
+      torque_world[k][lane] = loads.torque_world()[k];
+      torque_principal[k][lane] = principal.torque_body[k];
+      for (int j = 0; j < 3; ++j) moment[3 * k + j][lane] = principal.force_moment(k, j);
+    }
+    return;
   }
+  const double* rates = parts.part(HeldLoadParts::kDamping);
+  linear_damping[lane] = rates[0];
+  angular_damping[lane] = rates[1];
+  const double* force_w = parts.part(HeldLoadParts::kForceWorld);
+  const double* force_p = parts.part(HeldLoadParts::kForcePrincipal);
+  const double* torque_w = parts.part(HeldLoadParts::kTorqueWorld);
+  const double* torque_p = parts.part(HeldLoadParts::kTorquePrincipal);
+  const double* c = parts.part(HeldLoadParts::kForceMoment);
+  for (int k = 0; k < 3; ++k) {
+    force_world[k][lane] = force_w[k];
+    force_principal[k][lane] = force_p[k];
+    torque_world[k][lane] = torque_w[k];
+    torque_principal[k][lane] = torque_p[k];
+  }
+  for (int k = 0; k < 9; ++k) moment[k][lane] = c[k];
 }
 
 inline void LoadedLanes::Store(std::size_t lane, BodyState* state) const {

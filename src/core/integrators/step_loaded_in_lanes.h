@@ -11,6 +11,7 @@
 #include "body_batch.h"
 #include "casimir_free_lanes.h"
 #include "casimir_loaded_lanes.h"
+#include "held_load_parts.h"
 #include "lane_cache.h"
 #include "rigid_body_sim/core/body_fault.h"
 #include "rigid_body_sim/core/body_model.h"
@@ -52,7 +53,10 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
     queue.Flush(dt_s, [&](std::size_t l, std::size_t body) {
       BodyState next = batch.states[body];
       queue.lanes.Store(l, &next);
-      const Eigen::Vector3d impulse = dt_s * batch.loads[body].force_world();
+      const HeldLoadParts& parts = batch.load_parts[body];
+      const Eigen::Vector3d impulse =
+          dt_s * (parts.in_loads() ? batch.loads[body].force_world()
+                                   : Eigen::Vector3d(parts.part(HeldLoadParts::kForceWorld)));
       next.position += (0.5 * dt_s * batch.models[body].inverse_mass()) * impulse;
       next.linear_momentum += impulse;
       CommitStep(batch, body, next);
@@ -109,39 +113,46 @@ void StepLoadedInLanes(const BodyBatch& batch, double dt_s, const FreeLaneKernel
   }
   for (const std::size_t body : batch) {
     const BodyModel& model = batch.models[body];
-    const HeldLoads& load = batch.loads[body];
+    const HeldLoadParts& parts = batch.load_parts[body];
     BodyState& state = batch.states[body];
-    const bool damped = load.has_damping();
-    FreeLaneQueue* queue = load.has_torque() || damped
+    const bool damped = parts.has_damping();
+    FreeLaneQueue* queue = parts.has_torque() || damped
                                ? nullptr
                                : pulled.For(model, state, dt_s, batch.within_one_step_bound);
     // The group by branches, not by arithmetic on the fit: a predicted
     // branch lets the copy into the lanes start before the fit is computed.
     const auto turn_in = [&](std::size_t angles_group) __attribute__((always_inline)) {
       const std::size_t group = angles_group + (damped ? 4 : 0) +
-                                (load.has_force_moment() ? 2 : 0) + (load.has_body_axes() ? 1 : 0);
+                                (parts.has_force_moment() ? 2 : 0) +
+                                (parts.has_body_axes() ? 1 : 0);
       if (turned[group] == nullptr) {
         turned[group] = &cache.NextLoadedBlock(group);
         record.replayable = record.replayable && cache.LastBlockKept(group);
         turned[group]->damped = damped;
-        turned[group]->force_moment = load.has_force_moment();
-        turned[group]->body_axes = load.has_body_axes();
+        turned[group]->force_moment = parts.has_force_moment();
+        turned[group]->body_axes = parts.has_body_axes();
       }
-      turned[group]->Load(turned_count[group], body, cache.step(), model, state, load);
+      turned[group]->Load(turned_count[group], body, cache.step(), model, state, parts,
+                          batch.loads[body]);
       if (++turned_count[group] == kLanes) flush_turned(group);
     };
     if (queue != nullptr) {
       if (record.replayable) record.pulled.push_back(body);
       pull(queue, body);
-    } else if (const bool damping_fits = !damped || DampingFitsLoadedLanes(load.damping(), dt_s);
-               damping_fits && (fit_known || FitsLoadedLanes(model, state, load, dt_s, reach))) {
+    } else if (const bool damping_fits =
+                   !damped ||
+                   DampingFitsLoadedLanes(
+                       parts.in_loads() ? batch.loads[body].damping() : parts.damping(), dt_s);
+               damping_fits &&
+               (fit_known || FitsLoadedLanes(model, state, parts.torque_bound(), dt_s, reach))) {
       turn_in(0);
-    } else if (damping_fits && FitsLoadedWideLanes(model, state, load, dt_s, reach)) {
+    } else if (damping_fits &&
+               FitsLoadedWideLanes(model, state, parts.torque_bound(), dt_s, reach)) {
       turn_in(kWideGroups);
     } else {
       record.replayable = false;
       BodyState next = state;
-      step_one(model, load, dt_s, &next);
+      step_one(model, batch.loads[body], dt_s, &next);
       CommitStep(batch, body, next);
     }
   }
