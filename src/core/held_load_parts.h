@@ -3,13 +3,13 @@
 // that pick its lanes, the stamp of its principal parts, and those parts
 // (HeldLoads::InPrincipalFrame) with the world-axes ones and the damping,
 // each part left out when all its bits are zero. A HeldLoads is 448 B, of
-// which a step read four lines in two passes (the plan, then the lanes)
-// while the hardware prefetchers streamed all seven. The StepEngine keeps
-// one of these per body beside the store, kept anew for the bodies whose
-// loads changed, and a loaded body's step reads these alone. Loads that changed since the
-// last step, and parts too many for the two lines, stay in the HeldLoads,
-// which the lanes then read (in_loads): loads that change in every step
-// would cost more packed than read there.
+// which a step needs four lines in two passes (the plan, then the lanes),
+// while the hardware prefetchers would stream all seven. The StepEngine
+// keeps one of these per body beside the store, kept anew for the bodies
+// whose loads changed, and a loaded body's step reads these alone. Loads
+// that changed since the last step, and parts too many for the two lines,
+// stay in the HeldLoads, which the lanes then read (in_loads): loads that
+// change in every step would cost more packed than read there.
 #pragma once
 
 #include <array>
