@@ -6,10 +6,8 @@
 # scripts/test.sh must never be this one), runs every test and exits non-zero
 # on a test failure or on any sanitizer report from any process.
 #
-#   bash scripts/sanitizers.sh              # build -j2, then all tests
-#   RBS_JOBS=1 bash scripts/sanitizers.sh   # build -j1
-#   bash scripts/sanitizers.sh --build-only # build, run nothing (.ci/run
-#                                           # builds so beside the test command)
+#   bash scripts/sanitizers.sh            # build -j2, then all tests
+#   RBS_JOBS=1 bash scripts/sanitizers.sh # build -j1
 #
 # All but two run here too. Stress.RandomParticleForcesKeepEveryStateFinite
 # (10^5 steps of random forces on every scheme, the longest test by far under
@@ -28,15 +26,6 @@ set -euo pipefail
 # shellcheck source=scripts/common.sh
 source "$(dirname "${BASH_SOURCE[0]}")/common.sh"
 ws="${RBS_SANITIZER_WS:-/tmp/ws_asan}"
-build_only=0
-case "${1:-}" in
-  "") ;;
-  --build-only) build_only=1 ;;
-  *)
-    echo "usage: sanitizers.sh [--build-only]" >&2
-    exit 2
-    ;;
-esac
 start=$(date +%s)
 
 bash "$repo/scripts/install_deps.sh"
@@ -60,10 +49,6 @@ rbs_source_devel
 # The test binaries build in parallel here; run_tests runs them one at a time.
 catkin_make tests -j"$jobs"
 build_done=$(date +%s)
-if [ "$build_only" = 1 ]; then
-  echo "sanitizers: built in $((build_done - start)) s (workspace $ws, -j$jobs)"
-  exit 0
-fi
 
 logs="$ws/sanitizer_logs"
 rm -rf "$logs" "$ws/ros_home" build/test_results
