@@ -54,8 +54,8 @@ SimClient::SimClient(const std::string& node, ros::WallDuration timeout)
 
 // Each service keeps one connection: a connection per call (ros::service::call)
 // lets roscpp report a served request as failed when the node closes it before
-// the answer is read (ros_comm issue 1976). A connection lost with a node that
-// restarted is opened again on the next call.
+// the answer is read. A connection lost with a node that restarted is opened
+// again on the next call.
 template <typename Service>
 void SimClient::Call(const char* name, Service* service) {
   const std::string resolved = node_ + "/" + name;

@@ -249,8 +249,8 @@ class Sim {
   // Calls the node's service `rel` on a connection kept for the process.
   // ros::service::call opens one per call, and roscpp can then report a
   // served request as failed when the node closes that connection before the
-  // answer is read (ros_comm issue 1976); a kept connection is never closed
-  // by the node. A request is never sent twice: a failed call may have run.
+  // answer is read; a kept connection is never closed by the node. A
+  // request is never sent twice: a failed call may have run.
   template <typename Srv>
   bool Call(const std::string& rel, Srv& srv) {
     ros::ServiceClient* client;
